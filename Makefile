@@ -1,0 +1,37 @@
+# Thin wrapper: install what is missing, configure and build Release into build/, then act.
+#   make run    build, then run the default example (results under out/)
+#   make test   build, then the whole test suite through ctest
+#   make bench  build, then the step-loop benchmark (particle-steps per second)
+BUILD_DIR  ?= build
+BUILD_TYPE ?= Release
+JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
+CMAKE_ARGS ?=
+
+# Debian 12 packages the build needs (compiler, CMake, Eigen, Catch2; OpenMP comes with g++).
+PACKAGES = g++ make cmake pkg-config libeigen3-dev catch2
+
+.PHONY: all deps configure build run test bench clean
+
+all: build
+
+deps:
+	@./scripts/install-deps.sh $(PACKAGES)
+
+configure: deps
+	@cmake -S . -B $(BUILD_DIR) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_ARGS) >/dev/null
+
+build: configure
+	@cmake --build $(BUILD_DIR) -j $(JOBS)
+
+run: build
+	@mkdir -p out
+	./$(BUILD_DIR)/examples/vibrating_bar --out out/vibrating_bar
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+bench: build
+	./$(BUILD_DIR)/bench/seismpm_bench
+
+clean:
+	rm -rf $(BUILD_DIR)

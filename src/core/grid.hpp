@@ -1,0 +1,71 @@
+// Uniform structured background grid of square (cube) cells with nodal fields and edge fixities.
+#pragma once
+
+#include <array>
+#include <string_view>
+#include <vector>
+
+#include "types.hpp"
+
+namespace seismpm {
+
+// Grid edges: left/right are -x/+x, bottom/top -y/+y, back/front -z/+z.
+enum class Side { Left, Right, Bottom, Top, Back, Front };
+
+// Degrees of freedom a fixity holds, as a bit mask.
+enum DofMask : unsigned { FixX = 1u, FixY = 2u, FixZ = 4u };
+
+template <int Dim>
+class Grid {
+ public:
+  // Covers [lower, upper] with cells of size `cell`; the upper edge is rounded up to whole cells.
+  Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell);
+
+  const Vec<Dim>& origin() const { return origin_; }
+  Vec<Dim> upper() const;
+  double cell() const { return h_; }
+  int cells(int axis) const { return cells_[axis]; }
+  int nodes(int axis) const { return cells_[axis] + 1; }
+  int node_count() const { return static_cast<int>(mass.size()); }
+  int cell_count() const;
+  // Step in the linear node index for one node along `axis` (axis 0 varies fastest).
+  int stride(int axis) const { return stride_[axis]; }
+  std::array<int, Dim> node_coords(int node) const;
+  Vec<Dim> node_position(int node) const;
+
+  // Zeroes mass, momentum and force before a transfer.
+  void reset();
+
+  // Holds the given degrees of freedom of every node on a grid edge at zero.
+  void fix(Side side, unsigned dof_mask);
+  // Nodes with at least one fixed degree of freedom and their masks.
+  const std::vector<int>& fixed_nodes() const { return fixed_nodes_; }
+  unsigned fixity(int node) const { return fixity_[node]; }
+  // Zeroes the fixed components of `field` (velocities, accelerations).
+  void apply_fixities(std::vector<Vec<Dim>>& field) const;
+
+  // Nodal fields, indexed by the linear node index.
+  std::vector<double> mass;
+  std::vector<Vec<Dim>> momentum;
+  std::vector<Vec<Dim>> force;         // internal + external: the out-of-balance force
+  std::vector<Vec<Dim>> velocity;      // updated (Lagrangian) velocity v^L, then the MUSL re-map
+  std::vector<Vec<Dim>> acceleration;  // for the FLIP update of particle velocities
+
+ private:
+  Vec<Dim> origin_;
+  double h_;
+  std::array<int, Dim> cells_{};
+  std::array<int, Dim> stride_{};
+  std::vector<unsigned char> fixity_;
+  std::vector<int> fixed_nodes_;
+};
+
+// Parses "left" | "right" | "bottom" | "top" | "back" | "front"; throws InputError otherwise.
+Side parse_side(std::string_view name, int dim);
+// Parses "x" | "y" | "z" | "xy" | "xz" | "yz" | "xyz" into a DofMask; throws InputError otherwise.
+unsigned parse_dof(std::string_view name, int dim);
+
+extern template class Grid<2>;
+extern template class Grid<3>;
+
+}  // namespace seismpm

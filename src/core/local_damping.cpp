@@ -1,0 +1,41 @@
+#include "local_damping.hpp"
+
+#include <cmath>
+
+#include "error.hpp"
+#include "model.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+LocalDamping<Dim>::LocalDamping(double alpha) : alpha_(0.0) {
+  set_alpha(alpha);
+}
+
+template <int Dim>
+void LocalDamping<Dim>::set_alpha(double alpha) {
+  if (!(alpha >= 0.0 && alpha < 1.0)) throw InputError("damping must be in [0, 1)");
+  alpha_ = alpha;
+}
+
+template <int Dim>
+void LocalDamping<Dim>::nodal_forces(Model<Dim>& model) {
+  if (alpha_ == 0.0) return;
+  auto& g = model.grid();
+  const int n = g.node_count();
+  const double eps = model.mass_threshold(), alpha = alpha_;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    if (!(g.mass[i] > eps)) continue;
+    for (int d = 0; d < Dim; ++d) {
+      const double v = g.momentum[i][d];  // same sign as the nodal velocity
+      const double s = (v > 0.0) - (v < 0.0);
+      g.force[i][d] -= alpha * std::abs(g.force[i][d]) * s;
+    }
+  }
+}
+
+template class LocalDamping<2>;
+template class LocalDamping<3>;
+
+}  // namespace seismpm

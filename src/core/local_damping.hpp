@@ -1,0 +1,26 @@
+// Local (Cundall) damping: each nodal force component is reduced by alpha times its magnitude
+// against the direction of the nodal velocity, f <- f - alpha |f| sign(v). Brings a body to
+// static equilibrium without changing the equilibrium itself (PHYSICS.md, "Local damping").
+#pragma once
+
+#include "fix.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+class LocalDamping : public Fix<Dim> {
+ public:
+  explicit LocalDamping(double alpha);
+  std::string_view name() const override { return "local_damping"; }
+  void nodal_forces(Model<Dim>& model) override;
+  double alpha() const { return alpha_; }
+  void set_alpha(double alpha);
+
+ private:
+  double alpha_;
+};
+
+extern template class LocalDamping<2>;
+extern template class LocalDamping<3>;
+
+}  // namespace seismpm

@@ -1,0 +1,42 @@
+// The small interface every constitutive model implements. The kernel calls update_stress once
+// per material per step with the list of its particles: no virtual call per particle.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "types.hpp"
+
+namespace seismpm {
+
+// Views into the particle arrays for one material's particles (`index` lists them).
+struct StressUpdate {
+  const int* index = nullptr;
+  int count = 0;
+  Sym* stress = nullptr;                   // in: old stress, already rotated objectively; out: new stress
+  const Sym* strain_increment = nullptr;   // dt * sym(L) of this step
+  double* plastic_strain = nullptr;        // model state: accumulated plastic shear strain
+  std::uint8_t* yield = nullptr;           // out: 1 where the update was plastic
+};
+
+class Material {
+ public:
+  explicit Material(double density) : density_(density) {}
+  virtual ~Material() = default;
+
+  virtual std::string_view kind() const = 0;
+  // Initial mass density (kg/m^3).
+  double density() const { return density_; }
+  // Constrained (p-wave) modulus K + 4G/3: sets the wave speed for the time step.
+  virtual double p_wave_modulus() const = 0;
+  // Shear modulus, for diagnostics and plastic models.
+  virtual double shear_modulus() const = 0;
+  // Bulk modulus.
+  virtual double bulk_modulus() const = 0;
+  virtual void update_stress(const StressUpdate& batch) const = 0;
+
+ private:
+  double density_;
+};
+
+}  // namespace seismpm

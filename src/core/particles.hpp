@@ -1,0 +1,45 @@
+// Material points as a structure of arrays: one std::vector per field, indexed by particle.
+// The order changes when particles are sorted by cell; `id` is the stable identity.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "types.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+struct Particles {
+  std::vector<Vec<Dim>> x;        // position (m)
+  std::vector<Vec<Dim>> u;        // displacement since the last reset (m)
+  std::vector<Vec<Dim>> v;        // velocity (m/s)
+  std::vector<double> mass;       // kg (per metre out of plane in 2D)
+  std::vector<double> volume;     // m^3 (m^2 per metre in 2D)
+  std::vector<double> half_width; // uGIMP half-width l in cell units, fixed at creation
+  std::vector<Sym> stress;        // Cauchy stress (Pa), tension positive
+  std::vector<Sym> strain;        // total strain since the last reset
+  std::vector<double> plastic_strain;  // accumulated plastic shear strain
+  std::vector<std::uint8_t> yield;     // 1 when the last update was plastic
+  std::vector<std::int32_t> id;        // creation index, unchanged by sorting
+  std::vector<std::uint16_t> body;
+  std::vector<std::uint16_t> material;
+
+  std::size_t size() const { return x.size(); }
+  double density(std::size_t p) const { return mass[p] / volume[p]; }
+
+  // Appends a stress-free particle at rest; returns its index.
+  std::size_t add(const Vec<Dim>& position, double particle_mass, double particle_volume,
+                  double particle_half_width, int body_index, int material_index);
+
+  // Reorders every field so that new index k holds old particle order[k].
+  void permute(const std::vector<int>& order);
+
+  // Sets displacement and total strain to zero (end of a gravity phase).
+  void reset_kinematics();
+};
+
+extern template struct Particles<2>;
+extern template struct Particles<3>;
+
+}  // namespace seismpm

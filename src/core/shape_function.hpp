@@ -1,0 +1,67 @@
+// Shape functions on a uniform grid, per axis in cell units (h = 1), combined as tensor products.
+// Linear (tent) touches 2 nodes per axis, uGIMP 3 (PHYSICS.md, "Shape functions").
+// Each kind gives the first node of its stencil and the weights and derivatives at K consecutive
+// nodes from a given first node.
+#pragma once
+
+#include <cmath>
+#include <string_view>
+
+namespace seismpm {
+
+enum class ShapeKind { Linear, Gimp };
+
+inline std::string_view to_string(ShapeKind k) { return k == ShapeKind::Linear ? "linear" : "gimp"; }
+
+// Tent function N(r) = 1 - |r|.
+struct LinearShape {
+  static constexpr int K = 2;
+
+  static int first_node(double xi, double /*l*/) { return static_cast<int>(std::floor(xi)); }
+  // Valid for first <= xi <= first + 1 (the particle's cell).
+  static void eval(double xi, double /*l*/, int first, double* w, double* dw) {
+    const double r = xi - first;
+    w[0] = 1.0 - r;
+    w[1] = r;
+    dw[0] = -1.0;
+    dw[1] = 1.0;
+  }
+};
+
+// uGIMP: the tent convolved with the particle's characteristic function of half-width l
+// (cell units, 0 < l <= 1/2, kept at its initial size).
+struct GimpShape {
+  static constexpr int K = 3;
+
+  static double value(double r, double l) {
+    const double a = std::abs(r);
+    if (a < l) return 1.0 - (r * r + l * l) / (2.0 * l);
+    if (a < 1.0 - l) return 1.0 - a;
+    if (a < 1.0 + l) {
+      const double b = 1.0 + l - a;
+      return b * b / (4.0 * l);
+    }
+    return 0.0;
+  }
+
+  static double derivative(double r, double l) {
+    const double a = std::abs(r);
+    const double s = r < 0.0 ? -1.0 : 1.0;
+    if (a < l) return -r / l;
+    if (a < 1.0 - l) return -s;
+    if (a < 1.0 + l) return -s * (1.0 + l - a) / (2.0 * l);
+    return 0.0;
+  }
+
+  // Support is |xi - node| < 1 + l; with l <= 1/2 it holds at most 3 nodes.
+  static int first_node(double xi, double l) { return static_cast<int>(std::floor(xi - 1.0 - l)) + 1; }
+  static void eval(double xi, double l, int first, double* w, double* dw) {
+    for (int k = 0; k < K; ++k) {
+      const double r = xi - (first + k);
+      w[k] = value(r, l);
+      dw[k] = derivative(r, l);
+    }
+  }
+};
+
+}  // namespace seismpm

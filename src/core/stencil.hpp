@@ -1,0 +1,75 @@
+// The nodes a particle touches and its shape-function values there, per axis; evaluated once
+// per step at the start-of-step positions and used by every transfer of the step.
+#pragma once
+
+#include <cmath>
+
+#include "grid.hpp"
+#include "shape_function.hpp"
+#include "types.hpp"
+
+namespace seismpm {
+
+template <int Dim, int K>
+struct Stencil {
+  int base;            // linear index of the first node
+  double w[Dim][K];    // per-axis weights
+  double dw[Dim][K];   // per-axis derivatives (1/m)
+};
+
+// True while the particle's centre lies in the grid (edges included).
+template <int Dim>
+bool inside_grid(const Grid<Dim>& grid, const Vec<Dim>& x) {
+  for (int d = 0; d < Dim; ++d) {
+    const double xi = (x[d] - grid.origin()[d]) / grid.cell();
+    if (!(xi >= 0.0 && xi <= grid.cells(d))) return false;
+  }
+  return true;
+}
+
+// Per-axis first node and weights for a particle at x with uGIMP half-width l (cell units).
+// Returns false when the particle's centre is outside the grid. A uGIMP particle within l of a
+// grid edge reaches past it: the stencil is clipped to the grid there (the weight beyond is at most
+// l/4 and the edge nodes are where boundary conditions act), so bodies may rest on the grid edge.
+template <class Shape, int Dim>
+bool make_stencil(const Grid<Dim>& grid, const Vec<Dim>& x, double l, Stencil<Dim, Shape::K>& st) {
+  const double inv_h = 1.0 / grid.cell();
+  st.base = 0;
+  for (int d = 0; d < Dim; ++d) {
+    const double xi = (x[d] - grid.origin()[d]) * inv_h;
+    const int cells = grid.cells(d);
+    if (!(xi >= 0.0 && xi <= cells)) return false;
+    int first = Shape::first_node(xi, l);
+    if (first < 0) first = 0;
+    if (first > cells + 1 - Shape::K) first = cells + 1 - Shape::K;
+    Shape::eval(xi, l, first, st.w[d], st.dw[d]);
+    for (int k = 0; k < Shape::K; ++k) st.dw[d][k] *= inv_h;
+    st.base += first * grid.stride(d);
+  }
+  return true;
+}
+
+// Calls f(node, N, gradN) for every node of the stencil.
+template <int Dim, int K, class F>
+inline void for_each_node(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {
+  if constexpr (Dim == 2) {
+    const int sy = grid.stride(1);
+    for (int b = 0; b < K; ++b)
+      for (int a = 0; a < K; ++a) {
+        const Vec<2> dN(st.dw[0][a] * st.w[1][b], st.w[0][a] * st.dw[1][b]);
+        f(st.base + a + b * sy, st.w[0][a] * st.w[1][b], dN);
+      }
+  } else {
+    static_assert(Dim == 3);
+    const int sy = grid.stride(1), sz = grid.stride(2);
+    for (int c = 0; c < K; ++c)
+      for (int b = 0; b < K; ++b)
+        for (int a = 0; a < K; ++a) {
+          const Vec<3> dN(st.dw[0][a] * st.w[1][b] * st.w[2][c], st.w[0][a] * st.dw[1][b] * st.w[2][c],
+                          st.w[0][a] * st.w[1][b] * st.dw[2][c]);
+          f(st.base + a + b * sy + c * sz, st.w[0][a] * st.w[1][b] * st.w[2][c], dN);
+        }
+  }
+}
+
+}  // namespace seismpm

@@ -1,0 +1,46 @@
+// Isotropic linear elasticity (Hooke), applied to the objectively rotated stress:
+// sigma += lambda tr(de) I + 2 G de. In plane strain de_zz = 0 and sigma_zz follows from nu.
+#pragma once
+
+#include "core/material.hpp"
+
+namespace seismpm {
+
+// Lame constants from Young's modulus and Poisson's ratio.
+struct ElasticConstants {
+  double young, poisson;
+  double shear() const { return young / (2.0 * (1.0 + poisson)); }
+  double bulk() const { return young / (3.0 * (1.0 - 2.0 * poisson)); }
+  double lambda() const { return young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson)); }
+  double p_wave() const { return bulk() + 4.0 / 3.0 * shear(); }
+};
+
+// Throws InputError naming the bad parameter: density > 0, young > 0, poisson in [0, 0.5).
+void validate_elastic(double density, const ElasticConstants& e);
+
+// Adds the elastic response to the strain increment de: sigma + D de.
+inline Sym elastic_trial(const Sym& stress, const Sym& de, double lambda, double two_g) {
+  const double lt = lambda * trace(de);
+  Sym s = stress + two_g * de;
+  s[0] += lt;
+  s[1] += lt;
+  s[2] += lt;
+  return s;
+}
+
+class LinearElastic : public Material {
+ public:
+  LinearElastic(double density, double young, double poisson);
+  std::string_view kind() const override { return "linear_elastic"; }
+  double p_wave_modulus() const override { return elastic_.p_wave(); }
+  double shear_modulus() const override { return elastic_.shear(); }
+  double bulk_modulus() const override { return elastic_.bulk(); }
+  double young() const { return elastic_.young; }
+  double poisson() const { return elastic_.poisson; }
+  void update_stress(const StressUpdate& batch) const override;
+
+ private:
+  ElasticConstants elastic_;
+};
+
+}  // namespace seismpm

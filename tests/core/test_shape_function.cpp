@@ -1,0 +1,110 @@
+// Shape functions: partition of unity, gradients summing to zero, linear reproduction,
+// uGIMP values against the closed form and its limit l -> 0 (the tent).
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "core/grid.hpp"
+#include "core/stencil.hpp"
+
+using namespace seismpm;
+
+namespace {
+
+template <class Shape, int Dim>
+void check_partition_of_unity(double l) {
+  const Grid<Dim> grid(Vec<Dim>::Zero(), Vec<Dim>::Constant(1.0), 0.1);
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(0.05, 0.95);
+  double worst_sum = 0.0, worst_grad = 0.0, worst_x = 0.0, worst_id = 0.0;
+  for (int k = 0; k < 500; ++k) {
+    Vec<Dim> x;
+    for (int d = 0; d < Dim; ++d) x[d] = u(rng);
+    Stencil<Dim, Shape::K> st;
+    REQUIRE(make_stencil<Shape>(grid, x, l, st));
+    double sum = 0.0;
+    Vec<Dim> grad = Vec<Dim>::Zero(), xr = Vec<Dim>::Zero();
+    Mat<Dim> id = Mat<Dim>::Zero();
+    for_each_node(st, grid, [&](int i, double N, const Vec<Dim>& dN) {
+      CHECK(N >= 0.0);
+      sum += N;
+      grad += dN;
+      xr += N * grid.node_position(i);
+      id += grid.node_position(i) * dN.transpose();
+    });
+    worst_sum = std::max(worst_sum, std::abs(sum - 1.0));
+    worst_grad = std::max(worst_grad, grad.norm() * grid.cell());
+    worst_x = std::max(worst_x, (xr - x).norm() / grid.cell());
+    worst_id = std::max(worst_id, (id - Mat<Dim>::Identity()).norm());
+  }
+  CHECK(worst_sum < 1e-14);   // sum N = 1
+  CHECK(worst_grad < 1e-13);  // sum grad N = 0 (scaled by h)
+  CHECK(worst_x < 1e-13);     // sum N x_i = x
+  CHECK(worst_id < 1e-12);    // sum x_i (x) grad N = I
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE_SIG("shape functions form a partition of unity and reproduce linear fields", "[core][shape]",
+                       ((int Dim), Dim), 2, 3) {
+  SECTION("linear") { check_partition_of_unity<LinearShape, Dim>(0.0); }
+  SECTION("uGIMP, 1 particle per cell") { check_partition_of_unity<GimpShape, Dim>(0.5); }
+  SECTION("uGIMP, 2 particles per cell") { check_partition_of_unity<GimpShape, Dim>(0.25); }
+  SECTION("uGIMP, 4 particles per cell") { check_partition_of_unity<GimpShape, Dim>(0.125); }
+}
+
+TEST_CASE("uGIMP matches its closed form piece by piece", "[core][shape]") {
+  const double l = 0.25;
+  // |r| < l: 1 - (r^2 + l^2) / (2 l)
+  CHECK(GimpShape::value(0.1, l) == Approx(1.0 - (0.01 + 0.0625) / 0.5).epsilon(1e-15));
+  // l <= |r| < 1 - l: 1 - |r|
+  CHECK(GimpShape::value(-0.6, l) == Approx(0.4).epsilon(1e-15));
+  // 1 - l <= |r| < 1 + l: (1 + l - |r|)^2 / (4 l)
+  CHECK(GimpShape::value(1.1, l) == Approx(0.15 * 0.15 / 1.0).epsilon(1e-12));
+  CHECK(GimpShape::value(1.25, l) == 0.0);
+  // Continuity of value and slope at the piece boundaries, and slope = finite difference.
+  for (double r : {l, 1.0 - l, 1.0 + l, -l, -(1.0 - l)}) {
+    CAPTURE(r);
+    CHECK(GimpShape::value(r - 1e-12, l) == Approx(GimpShape::value(r + 1e-12, l)).margin(1e-10));
+    CHECK(GimpShape::derivative(r - 1e-9, l) == Approx(GimpShape::derivative(r + 1e-9, l)).margin(1e-7));
+  }
+  for (double r = -1.3; r <= 1.3; r += 0.0173) {
+    CAPTURE(r);
+    const double fd = (GimpShape::value(r + 1e-7, l) - GimpShape::value(r - 1e-7, l)) / 2e-7;
+    CHECK(GimpShape::derivative(r, l) == Approx(fd).margin(1e-6));
+  }
+}
+
+TEST_CASE("uGIMP tends to the linear tent as the particle size goes to zero", "[core][shape]") {
+  double previous = 1.0;
+  for (double l : {1e-2, 1e-3, 1e-4, 1e-5}) {
+    double worst = 0.0;
+    for (double r = -1.2; r <= 1.2; r += 0.001) worst = std::max(worst, std::abs(GimpShape::value(r, l) - std::max(0.0, 1.0 - std::abs(r))));
+    CAPTURE(l, worst);
+    CHECK(worst <= l);           // the difference is O(l) ...
+    CHECK(worst < 0.5 * previous);  // ... and falls with l
+    previous = worst;
+  }
+}
+
+TEST_CASE("a stencil is refused outside the grid and clipped at its edge", "[core][shape]") {
+  const Grid<2> grid(Vec<2>::Zero(), Vec<2>(1.0, 1.0), 0.1);
+  Stencil<2, GimpShape::K> g;
+  Stencil<2, LinearShape::K> s;
+  const auto weight_sum = [&](const auto& st) {
+    double sum = 0.0;
+    for_each_node(st, grid, [&](int, double N, const Vec<2>&) { sum += N; });
+    return sum;
+  };
+  REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.025, 0.5), 0.25, g));  // support [0, 0.05]: complete
+  CHECK(weight_sum(g) == Approx(1.0).epsilon(1e-14));
+  REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.015, 0.5), 0.25, g));  // reaches 0.01 past the edge
+  CHECK(weight_sum(g) == Approx(1.0 - 0.1 * 0.1 / 1.0).epsilon(1e-12)); // (l - xi)^2 / (4 l) clipped
+  REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.975, 0.975), 0.25, g)); // last node weight zero: shifted back
+  CHECK(weight_sum(g) == Approx(1.0).epsilon(1e-14));
+  CHECK(make_stencil<LinearShape>(grid, Vec<2>(1.0, 0.0), 0.0, s));
+  CHECK(weight_sum(s) == Approx(1.0).epsilon(1e-14));
+  CHECK_FALSE(make_stencil<LinearShape>(grid, Vec<2>(1.0 + 1e-9, 0.5), 0.0, s));
+  CHECK_FALSE(make_stencil<GimpShape>(grid, Vec<2>(0.5, -1e-9), 0.25, g));
+  CHECK(inside_grid(grid, Vec<2>(0.0, 1.0)));
+  CHECK_FALSE(inside_grid(grid, Vec<2>(0.5, 1.0 + 1e-12)));
+}
