@@ -133,10 +133,17 @@ void Model<Dim>::step(double dt_max) {
   dt = std::min(dt, dt_max);
   if (first_dt_ == 0.0) first_dt_ = dt;
   if (!std::isfinite(dt) || (dt < 1e-6 * first_dt_ && dt < dt_max)) {
+    // Name the particle that sets the time step: the fastest signal.
+    std::size_t fastest = 0;
+    double speed = -1.0;
+    for (std::size_t p = 0; p < particles_.size(); ++p) {
+      const double c = std::sqrt(p_wave_modulus_[particles_.material[p]] / particles_.density(p)) + particles_.v[p].norm();
+      if (!(c <= speed)) fastest = p, speed = c;
+    }
     std::ostringstream os;
-    os << "step " << steps_ << " (t = " << time_ << " s): the time step collapsed to " << dt << " s (first step "
-       << first_dt_ << " s)";
-    throw SimulationError(os.str());
+    os << "the time step collapsed to " << dt << " s (first step " << first_dt_ << " s): wave speed + velocity "
+       << speed << " m/s";
+    fail(fastest, "sets it: " + os.str());
   }
   if (settings_.shape == ShapeKind::Linear)
     step_with<LinearShape>(dt);

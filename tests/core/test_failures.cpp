@@ -79,6 +79,23 @@ TEST_CASE("an infinite velocity given to a particle stops the run", "[core][fail
   CHECK_THROWS_AS(m->step(), SimulationError);
 }
 
+TEST_CASE("a collapsing time step stops the run and names the fastest particle", "[core][failure]") {
+  auto m = test::elastic_block<2>(1.0, 0.1, Vec<2>(0.2, 0.2), Vec<2>(0.6, 0.6));
+  m->step();
+  const int id = m->particles().id[5];
+  m->particles().v[5] = Vec<2>(0.0, 1e9);  // a particle shot off at 1e9 m/s
+  std::string message;
+  try {
+    m->step();
+  } catch (const SimulationError& e) {
+    message = e.what();
+  }
+  CAPTURE(message);
+  CHECK_THAT(message, Catch::Contains("time step collapsed") && Catch::Contains("particle " + std::to_string(id) + " ") &&
+                          Catch::Contains("step 1 "));
+  CHECK(m->steps() == 1);
+}
+
 TEST_CASE("a model refuses bad settings by name", "[core][failure]") {
   ModelSettings<2> s;
   s.cfl = 1.5;
