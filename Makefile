@@ -7,8 +7,9 @@ BUILD_TYPE ?= Release
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-# Debian 12 packages the build needs (compiler, CMake, Eigen, Catch2; OpenMP comes with g++).
-PACKAGES = g++ make cmake pkg-config libeigen3-dev catch2
+# Debian 12 packages the build needs (compiler, CMake, Eigen, Catch2, Lua 5.4, readline, CLI11;
+# OpenMP comes with g++).
+PACKAGES = g++ make cmake pkg-config libeigen3-dev catch2 liblua5.4-dev libreadline-dev libcli11-dev
 
 .PHONY: all deps configure build run test bench clean
 
@@ -25,7 +26,7 @@ build: configure
 
 run: build
 	@mkdir -p out
-	./$(BUILD_DIR)/examples/vibrating_bar --out out/vibrating_bar
+	./$(BUILD_DIR)/seismpm examples/01_vibrating_bar.lua
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)

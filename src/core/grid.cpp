@@ -22,7 +22,7 @@ Grid<Dim>::Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell) : ori
     cells_[d] = std::max(1, static_cast<int>(n));
     stride_[d] = static_cast<int>(total);
     total *= cells_[d] + 1;
-    if (total > 2'000'000'000L) throw InputError("grid: too many nodes");
+    if (total > 100'000'000L) throw InputError("grid: over 100 million nodes; use a larger cell");
   }
   mass.assign(total, 0.0);
   momentum.assign(total, Vec<Dim>::Zero());

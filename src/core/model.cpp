@@ -70,6 +70,9 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
                              const std::function<bool(const Vec<Dim>&)>& inside) {
   if (body < 0 || body >= static_cast<int>(bodies_.size())) throw InputError("fill: unknown body");
   if (material < 0 || material >= material_count()) throw InputError("fill: unknown material");
+  double candidates = 1.0;  // sub-points in the box: refuse what would exhaust memory
+  for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * bodies_[body].ppc;
+  if (candidates > 2e8) throw InputError("fill: over 200 million particles; use a larger cell or fewer ppc");
   const int ppc = bodies_[body].ppc;
   const double h = grid_.cell();
   const double sub = h / ppc;
@@ -96,6 +99,7 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
       for (int d = 0; d < Dim; ++d) in_box = in_box && x[d] >= lo[d] && x[d] <= hi[d];
       if (in_box && inside(x)) {
         particles_.add(x, mass, volume, half_width, body, material);
+        index_of_id_.clear();
         ++added;
       }
       int d = 0;
@@ -418,14 +422,38 @@ void Model<Dim>::sort_particles() {
   for (int p = 0; p < n; ++p) order[start[key[p]]++] = p;
   particles_.permute(order);
   material_lists_valid_ = false;
+  index_of_id_.clear();
 }
 
 // ---------------------------------------------------------------- diagnostics
 
 template <int Dim>
+std::size_t Model<Dim>::index_of(int id) const {
+  if (index_of_id_.size() != particles_.size()) {
+    index_of_id_.assign(particles_.size(), 0);
+    for (std::size_t p = 0; p < particles_.size(); ++p) index_of_id_[particles_.id[p]] = static_cast<int>(p);
+  }
+  return index_of_id_.at(id);
+}
+
+template <int Dim>
 double Model<Dim>::kinetic_energy() const {
   double e = 0.0;
   for (std::size_t p = 0; p < particles_.size(); ++p) e += 0.5 * particles_.mass[p] * particles_.v[p].squaredNorm();
+  return e;
+}
+
+template <int Dim>
+double Model<Dim>::strain_energy() const {
+  double e = 0.0;
+  for (std::size_t p = 0; p < particles_.size(); ++p) {
+    const Material& m = *materials_[particles_.material[p]];
+    const Sym& s = particles_.stress[p];
+    const double tr = s[0] + s[1] + s[2], mean = tr / 3.0;
+    const double dev2 = (s[0] - mean) * (s[0] - mean) + (s[1] - mean) * (s[1] - mean) + (s[2] - mean) * (s[2] - mean) +
+                        2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+    e += particles_.volume[p] * (tr * tr / (18.0 * m.bulk_modulus()) + dev2 / (4.0 * m.shear_modulus()));
+  }
   return e;
 }
 

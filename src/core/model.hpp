@@ -77,7 +77,12 @@ class Model {
   // The time step the CFL condition allows for the current particle state.
   double stable_time_step() const;
 
+  // Current index of the particle created as number `id` (particles are reordered by sorting).
+  std::size_t index_of(int id) const;
+
   double kinetic_energy() const;
+  // Elastic strain energy recovered from the stresses, sum V [(tr s)^2 / 18K + dev s : dev s / 4G].
+  double strain_energy() const;
   Vec<Dim> centroid(int body) const;  // mass-weighted
   Vec<Dim> momentum() const;
 
@@ -118,6 +123,7 @@ class Model {
   std::vector<Sym> strain_increment_;
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;
+  mutable std::vector<int> index_of_id_;  // rebuilt on demand after a sort
   ScatterSchedule schedule_;
 
   double time_ = 0.0;

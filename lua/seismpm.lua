@@ -1,0 +1,134 @@
+-- seismpm's Lua-side library: geometry builders and console conveniences, loaded at start.
+-- Everything here is plain Lua on top of the `mpm` module.
+
+local geometry = {}
+
+local function check_table(fname, t)
+  if type(t) ~= "table" then
+    error(fname .. ": expects a table of named arguments { key = value, ... }, got " .. type(t), 3)
+  end
+end
+
+local function check_keys(fname, t, allowed)
+  local set = {}
+  for _, k in ipairs(allowed) do set[k] = true end
+  for k in pairs(t) do
+    if type(k) ~= "number" and not set[k] then
+      error(fname .. ": unknown key '" .. tostring(k) .. "' (allowed: " .. table.concat(allowed, ", ") .. ")", 3)
+    end
+  end
+end
+
+local function number(fname, t, key, default)
+  local v = t[key]
+  if v == nil then
+    if default == nil then error(fname .. ": missing key '" .. key .. "'", 3) end
+    return default
+  end
+  if type(v) ~= "number" then error(fname .. ": key '" .. key .. "' must be a number, got " .. type(v), 3) end
+  return v
+end
+
+-- A slope in a box: level crest ground from `left` to crest.x at height crest.y, a face falling to
+-- the right at `angle` degrees down to `toe_level`, level toe ground to `right`; all above `base`.
+function geometry.slope(t)
+  local f = "mpm.geometry.slope"
+  check_table(f, t)
+  check_keys(f, t, { "left", "right", "base", "crest", "toe_level", "angle" })
+  local left, right = number(f, t, "left"), number(f, t, "right")
+  local base = number(f, t, "base", 0)
+  local toe, angle = number(f, t, "toe_level"), number(f, t, "angle")
+  if type(t.crest) ~= "table" or type(t.crest[1]) ~= "number" or type(t.crest[2]) ~= "number" then
+    error(f .. ": key 'crest' must be a point {x, y} (m)", 2)
+  end
+  local cx, cy = t.crest[1], t.crest[2]
+  if not (angle > 0 and angle < 90) then error(f .. ": key 'angle' must be in (0, 90) degrees, got " .. angle, 2) end
+  if not (right > left) then error(f .. ": key 'right' must exceed 'left'", 2) end
+  if not (toe > base and cy > toe) then
+    error(f .. ": need base < toe_level < crest height, got " .. base .. ", " .. toe .. ", " .. cy, 2)
+  end
+  local toe_x = cx + (cy - toe) / math.tan(math.rad(angle))
+  if not (cx > left and toe_x < right) then
+    error(string.format("%s: the face runs from x = %g to %g, outside left = %g .. right = %g", f, cx, toe_x, left, right), 2)
+  end
+  return mpm.shape.polygon{ {left, base}, {right, base}, {right, toe}, {toe_x, toe}, {cx, cy}, {left, cy} }
+end
+
+-- Horizontal layers listed from the bottom up by their top elevation.
+function geometry.layers(t)
+  local f = "mpm.geometry.layers"
+  check_table(f, t)
+  check_keys(f, t, { "left", "right", "base" })
+  local left, right = number(f, t, "left"), number(f, t, "right")
+  local bottom = number(f, t, "base", 0)
+  if #t == 0 then error(f .. ": give at least one layer {top = y, name = ...}", 2) end
+  local out = {}
+  for i, layer in ipairs(t) do
+    if type(layer) ~= "table" or type(layer.top) ~= "number" then
+      error(f .. ": layer " .. i .. " must be {top = y (m), name = ...}", 2)
+    end
+    if not (layer.top > bottom) then
+      error(f .. ": layer " .. i .. " top " .. layer.top .. " must be above " .. bottom, 2)
+    end
+    out[i] = { name = layer.name or ("layer" .. i), shape = mpm.shape.rectangle{ left, bottom, right, layer.top } }
+    bottom = layer.top
+  end
+  return out
+end
+
+mpm.geometry = geometry
+
+-- Console support ------------------------------------------------------------------------------
+
+-- A short printable form of a value: tables show their first entries.
+function mpm._show(v, depth)
+  depth = depth or 0
+  if type(v) == "string" then return string.format("%q", v) end
+  if type(v) ~= "table" or depth > 1 then return tostring(v) end
+  local parts, n = {}, 0
+  for i, x in ipairs(v) do
+    n = n + 1
+    if n > 10 then parts[#parts + 1] = "... (" .. #v .. " entries)"; break end
+    parts[#parts + 1] = mpm._show(x, depth + 1)
+  end
+  for k, x in pairs(v) do
+    if type(k) ~= "number" or k > #v or k < 1 then
+      n = n + 1
+      if n > 20 then parts[#parts + 1] = "..."; break end
+      parts[#parts + 1] = tostring(k) .. " = " .. mpm._show(x, depth + 1)
+    end
+  end
+  return "{" .. table.concat(parts, ", ") .. "}"
+end
+
+-- Completion candidates for the text before the cursor: globals, table fields (a.b.c) and
+-- methods of objects (m:).
+function mpm._complete(text)
+  local prefix, sep, partial = text:match("^(.-)([%.:])([%w_]*)$")
+  local names, base = {}, _G
+  if prefix then
+    local value = _G
+    for part in prefix:gmatch("[^%.]+") do
+      if type(value) ~= "table" then value = nil; break end
+      value = value[part]
+    end
+    if sep == ":" then
+      local mt = getmetatable(value)
+      base = mt and type(mt.__index) == "table" and mt.__index or nil
+    else
+      base = type(value) == "table" and value or nil
+    end
+  else
+    partial, prefix, sep = text, "", ""
+  end
+  if base == nil then return names end
+  for k in pairs(base) do
+    if type(k) == "string" and k:sub(1, #partial) == partial and k:sub(1, 1) ~= "_" then
+      names[#names + 1] = prefix .. sep .. k
+    end
+  end
+  table.sort(names)
+  return names
+end
+
+return mpm

@@ -1,0 +1,107 @@
+// seismpm: the command line. Runs scenario scripts, chunks, and the interactive console.
+#include <omp.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "console.hpp"
+#include "io/progress.hpp"
+#include "lua/api_docs.hpp"
+#include "lua/runtime.hpp"
+
+#ifndef SEISMPM_SOURCE_LUA_DIR
+#define SEISMPM_SOURCE_LUA_DIR ""
+#endif
+
+namespace {
+
+// Where lua/seismpm.lua may be: $SEISMPM_LUA_PATH, next to the binary, one up, the source tree.
+std::vector<std::string> library_dirs(const char* argv0) {
+  std::vector<std::string> dirs;
+  if (const char* env = std::getenv("SEISMPM_LUA_PATH")) dirs.emplace_back(env);
+  std::error_code ec;
+  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) exe = std::filesystem::absolute(argv0, ec);
+  const auto dir = exe.parent_path();
+  dirs.push_back((dir / "lua").string());
+  dirs.push_back((dir.parent_path() / "lua").string());
+  if (*SEISMPM_SOURCE_LUA_DIR) dirs.emplace_back(SEISMPM_SOURCE_LUA_DIR);
+  return dirs;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"seismpm: Material Point Method for seismic slope failure and landslide run-out.\n"
+               "  seismpm                   interactive console\n"
+               "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words)\n"
+               "  seismpm -i FILE.lua       run, then stay in the console\n"
+               "  seismpm -e 'lua code'     run a chunk",
+               "seismpm"};
+  app.prefix_command();  // everything after FILE.lua belongs to the script
+  bool interactive = false, quiet = false, version = false, api_doc = false;
+  std::vector<std::string> chunks, sets;
+  int threads = 0;
+  std::string out;
+  app.add_flag("-i,--interactive", interactive, "Enter the console after running FILE and chunks");
+  app.add_option("-e,--execute", chunks, "Run a Lua chunk (may repeat)");
+  app.add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  app.add_option("--out", out, "Write every output into this directory");
+  app.add_flag("--quiet", quiet, "No progress display");
+  app.add_option("--set", sets, "Scenario parameter name=value, read with mpm.param(name, default)");
+  app.add_flag("--version", version, "Print the version and exit");
+  app.add_flag("--api-doc", api_doc, "Print the Lua API reference (Markdown) and exit");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (version) {
+    std::printf("seismpm %s (Lua %s.%s)\n", seismpm::lua::kVersion, LUA_VERSION_MAJOR,
+                LUA_VERSION_MINOR);
+    return 0;
+  }
+  if (api_doc) {
+    std::fputs(seismpm::lua::api_markdown().c_str(), stdout);
+    return 0;
+  }
+  if (threads > 0) omp_set_num_threads(threads);
+
+  seismpm::lua::Session session;
+  for (const auto& s : sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      std::fprintf(stderr, "seismpm: --set expects name=value, got '%s'\n", s.c_str());
+      return 2;
+    }
+    session.params[s.substr(0, eq)] = s.substr(eq + 1);
+  }
+  session.out_dir = out;
+  session.progress = seismpm::Progress::detect(stderr, quiet);
+
+  const std::vector<std::string> rest = app.remaining();
+  std::string script;
+  std::vector<std::string> script_args;
+  if (!rest.empty()) {
+    script = rest.front();
+    script_args.assign(rest.begin() + 1, rest.end());
+  }
+
+  seismpm::lua::Runtime runtime(session, library_dirs(argv[0]));
+  seismpm::install_interrupt_handler(runtime, session);
+  bool ok = true;
+  for (std::size_t i = 0; ok && i < chunks.size(); ++i) ok = runtime.run_string(chunks[i], "=(command line)");
+  if (ok && !script.empty()) {
+    if (!std::filesystem::is_regular_file(script)) {
+      std::fprintf(stderr, "seismpm: cannot open %s: no such file\n", script.c_str());
+      return 1;
+    }
+    ok = runtime.run_file(script, script_args);
+  }
+  if (interactive || (script.empty() && chunks.empty())) return seismpm::run_console(runtime);
+  return ok ? 0 : 1;
+}

@@ -1,0 +1,50 @@
+#include "probe.hpp"
+
+#include "error.hpp"
+#include "model.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+Probe<Dim>::Probe(const Model<Dim>& model, std::string name, int particle_id, double every)
+    : name_(std::move(name)), id_(particle_id), every_(every), fields_(particle_fields(Dim)) {
+  if (!(every >= 0.0)) throw InputError("probe '" + name_ + "': every must be >= 0 (s)");
+  if (particle_id < 0 || particle_id >= static_cast<int>(model.particles().size()))
+    throw InputError("probe '" + name_ + "': no particle with id " + std::to_string(particle_id));
+  sample(model);
+}
+
+template <int Dim>
+void Probe<Dim>::sample(const Model<Dim>& model) {
+  if (!times_.empty() && times_.back() == model.time()) return;
+  const std::size_t p = model.index_of(id_);
+  times_.push_back(model.time());
+  for (Field f : fields_) values_.push_back(field_value(model.particles(), p, f));
+}
+
+template <int Dim>
+void Probe<Dim>::after_step(Model<Dim>& model) {
+  // Sample when the step crossed a multiple of `every` (or every step when every = 0).
+  if (every_ == 0.0 || model.time() >= times_.back() + every_ * (1.0 - 1e-9)) sample(model);
+}
+
+template <int Dim>
+std::vector<double> Probe<Dim>::series(Field f) const {
+  std::size_t column = 0;
+  while (fields_[column] != f) ++column;
+  std::vector<double> out(times_.size());
+  for (std::size_t k = 0; k < times_.size(); ++k) out[k] = values_[k * fields_.size() + column];
+  return out;
+}
+
+template <int Dim>
+double Probe<Dim>::latest(Field f) const {
+  std::size_t column = 0;
+  while (fields_[column] != f) ++column;
+  return values_[(times_.size() - 1) * fields_.size() + column];
+}
+
+template class Probe<2>;
+template class Probe<3>;
+
+}  // namespace seismpm

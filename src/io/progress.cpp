@@ -1,0 +1,77 @@
+#include "progress.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+
+namespace seismpm {
+
+namespace {
+
+std::string clock_text(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  const long s = std::lround(seconds);
+  char buf[32];
+  if (s >= 3600)
+    std::snprintf(buf, sizeof buf, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%ld:%02ld", s / 60, s % 60);
+  return buf;
+}
+
+}  // namespace
+
+Progress::Mode Progress::detect(std::FILE* out, bool quiet) {
+  if (quiet) return Mode::Quiet;
+  return isatty(fileno(out)) ? Mode::Terminal : Mode::Log;
+}
+
+void Progress::start(const std::string& label, double t_start, double t_end, std::size_t particles, long step) {
+  label_ = label;
+  t_start_ = t_start;
+  t_end_ = t_end;
+  particles_ = particles;
+  step_start_ = step;
+  wall_start_ = last_print_ = std::chrono::steady_clock::now();
+  printed_ = false;
+}
+
+std::string Progress::line(double t, long step, double dt, const std::string& extra) const {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+  const double rate = wall > 0 ? particles_ * static_cast<double>(step - step_start_) / wall : 0.0;
+  const double done = t_end_ > t_start_ ? (t - t_start_) / (t_end_ - t_start_) : 1.0;
+  const double eta = done > 0 ? wall * (1.0 - done) / done : NAN;
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "[%s] t = %.4g / %.4g s  step %ld  dt %.3g s  %.3gM p-steps/s  ETA %s%s%s",
+                label_.c_str(), t, t_end_, step, dt, rate / 1e6, clock_text(eta).c_str(), extra.empty() ? "" : "  ",
+                extra.c_str());
+  return buf;
+}
+
+void Progress::update(double t, long step, double dt, const std::string& extra) {
+  if (mode_ == Mode::Quiet) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double since = std::chrono::duration<double>(now - last_print_).count();
+  if (since < (mode_ == Mode::Terminal ? 0.2 : 5.0)) return;
+  last_print_ = now;
+  if (mode_ == Mode::Terminal)
+    std::fprintf(out_, "\r\033[K%s", line(t, step, dt, extra).c_str());
+  else
+    std::fprintf(out_, "%s\n", line(t, step, dt, extra).c_str());
+  std::fflush(out_);
+  printed_ = true;
+}
+
+void Progress::finish(double t, long step, const std::string& how) {
+  if (mode_ == Mode::Quiet) return;
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start_).count();
+  const double rate = wall > 0 ? particles_ * static_cast<double>(step - step_start_) / wall : 0.0;
+  if (mode_ == Mode::Terminal && printed_) std::fprintf(out_, "\r\033[K");
+  // Short runs from the console stay silent; anything that took a while says how it ended.
+  if (printed_ || wall > 1.0 || how != "done")
+    std::fprintf(out_, "[%s] %s at t = %.6g s, step %ld, %.1f s wall, %.3gM particle-steps/s\n", label_.c_str(),
+                 how.c_str(), t, step, wall, rate / 1e6);
+  std::fflush(out_);
+}
+
+}  // namespace seismpm

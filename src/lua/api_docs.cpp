@@ -1,0 +1,142 @@
+#include "api_docs.hpp"
+
+#include <sstream>
+
+namespace seismpm::lua {
+
+const std::vector<ApiDoc>& api_docs() {
+  static const std::vector<ApiDoc> docs = {
+      // --- module
+      {"mpm.model", "mpm.model{ domain, cell, shape, scheme, gravity, cfl, flip, dt }",
+       "Creates a 2D plane-strain model on a background grid. domain = {{x0, y0}, {x1, y1}} (m), required; "
+       "cell = cell size (m, > 0), required; shape = \"gimp\" (default) | \"linear\"; scheme = \"musl\" (default) | "
+       "\"usl\"; gravity = {gx, gy} (m/s2, default {0, -9.81}); cfl = Courant number in (0, 1] (default 0.4); "
+       "flip = FLIP share in [0, 1] (default 1, 0 = PIC); dt = fixed time step (s, default: from cfl).",
+       "local m = mpm.model{ domain = {{0, 0}, {1, 0.6}}, cell = 0.01, shape = \"gimp\" }"},
+      {"mpm.material.linear_elastic", "mpm.material.linear_elastic{ density, young, poisson }",
+       "Isotropic linear elasticity (plane strain keeps sigma_zz). density (kg/m3, > 0), young (Pa, > 0), "
+       "poisson in [0, 0.5).",
+       "local rock = mpm.material.linear_elastic{ density = 2550, young = 5e8, poisson = 0.19 }"},
+      {"mpm.shape.rectangle", "mpm.shape.rectangle{ x0, y0, x1, y1 }",
+       "An axis-aligned rectangle (m), also as { lower = {x0, y0}, upper = {x1, y1} }.",
+       "local s = mpm.shape.rectangle{ 0, 0, 0.9, 0.2 }"},
+      {"mpm.shape.polygon", "mpm.shape.polygon{ {x, y}, {x, y}, {x, y}, ... }",
+       "A simple polygon (m), convex or concave, in either orientation; at least 3 points, edges must not cross.",
+       "local s = mpm.shape.polygon{ {0, 0}, {0.9, 0}, {0.9, 0.2}, {0.3, 0.5}, {0, 0.5} }"},
+      {"mpm.shape.polyline", "mpm.shape.polyline{ {x, y}, {x, y}, ..., thickness, side }",
+       "A band along a polyline: thickness (m, > 0); side = \"both\" (default: thickness/2 each side) | \"left\" | "
+       "\"right\" (the full thickness on that side, walking from the first point to the last).",
+       "local base = mpm.shape.polyline{ {0, 0.1}, {1, 0.1}, thickness = 0.02, side = \"right\" }"},
+      {"mpm.history.table", "mpm.history.table{ {t, v}, {t, v}, ... }",
+       "A piecewise-linear history; times (s) must increase; zero before the first and after the last point.",
+       "local vx = mpm.history.table{ {0, 0}, {0.1, 2}, {5, 2} }"},
+      {"mpm.history.csv", "mpm.history.csv{ file, time = \"t\", value, scale = 1, shift = 0 }",
+       "A history from two named columns of a CSV file with a header line; '#' lines are skipped; values are "
+       "multiplied by scale and times shifted by shift (s). Errors name the file and line.",
+       "local vx = mpm.history.csv{ file = \"data/table_velocity.csv\", time = \"t\", value = \"vx\" }"},
+      {"mpm.history.fn", "mpm.history.fn(function(t) return value end)",
+       "A history computed by a Lua function of time (s).",
+       "local vx = mpm.history.fn(function(t) return 0.1 * math.sin(2 * math.pi * 3 * t) end)"},
+      {"mpm.param", "mpm.param(name, default)",
+       "A scenario parameter: the value given on the command line with --set name=value, converted to the type of "
+       "default (number, boolean or string), or default when not given.",
+       "local cell = mpm.param(\"cell\", 0.01)"},
+      {"mpm.version", "mpm.version()", "The seismpm version as a string.", "print(mpm.version())"},
+      {"mpm.out_dir", "mpm.out_dir(default)",
+       "The output directory: the one given with --out, or default.",
+       "local dir = mpm.out_dir(\"out/column\")"},
+      {"help", "help() | help(object) | help(\"name\")",
+       "Lists the API, or shows the documentation and an example of one function or of an object's methods.",
+       "help(mpm.model); help(m); help(\"model:run\")"},
+      // --- model
+      {"model:body", "m:body{ name, material, shape, ppc = 2 }",
+       "Fills a shape with particles of a material (ppc per cell per axis, 1..8) and returns the body. The shape must "
+       "lie inside the domain; names are unique.",
+       "local soil = m:body{ name = \"soil\", material = sand, shape = mpm.shape.rectangle{0, 0, 1, 0.5}, ppc = 2 }"},
+      {"model:fix", "m:fix{ side, dof = \"xy\" }",
+       "Holds the grid nodes on one edge: side = \"left\" | \"right\" | \"bottom\" | \"top\"; dof = \"x\" | \"y\" | "
+       "\"xy\".",
+       "m:fix{ side = \"bottom\", dof = \"xy\" }; m:fix{ side = \"left\", dof = \"x\" }"},
+      {"model:probe", "m:probe{ name, body, at = {x, y}, every = 0.01 }",
+       "A control point: follows the particle of the body nearest to `at` and records all its fields every `every` "
+       "seconds of simulated time (0: every step) and at the end of each run.",
+       "local p1 = m:probe{ name = \"crest\", body = soil, at = {0.3, 0.5} }"},
+      {"model:step", "m:step(n = 1)", "Takes n explicit steps.", "m:step(10)"},
+      {"model:run", "m:run{ duration, damping }",
+       "Runs for duration (s) more, with a progress display; damping = local damping coefficient in [0, 1) for this "
+       "and later runs (default: unchanged, 0 at first). Ctrl-C stops at the next step boundary with the model intact.",
+       "m:run{ duration = 1.0, damping = 0.7 }"},
+      {"model:time", "m:time()", "Simulated time (s).", "print(m:time())"},
+      {"model:steps", "m:steps()", "Number of steps taken.", "print(m:steps())"},
+      {"model:dt", "m:dt()", "The last time step (s), or the one the CFL condition allows before the first step.",
+       "print(m:dt())"},
+      {"model:energy", "m:energy()",
+       "Kinetic and elastic strain energy (J per metre out of plane) as a table { kinetic =, strain = }.",
+       "local e = m:energy(); print(e.kinetic, e.strain)"},
+      {"model:count", "m:count()", "Number of particles in the model.", "print(m:count())"},
+      {"model:bodies", "m:bodies()", "The bodies as a table by name.", "for name, b in pairs(m:bodies()) do print(name, b:count()) end"},
+      // --- body
+      {"body:name", "b:name()", "The body's name.", "print(soil:name())"},
+      {"body:count", "b:count()", "Number of particles of the body.", "print(soil:count())"},
+      {"body:centroid", "b:centroid()", "Mass centre {x, y} (m).", "local c = soil:centroid(); print(c[1], c[2])"},
+      {"body:field", "b:field(name)",
+       "A particle field as a Lua array in particle creation order. Fields: id body material mass volume density x y "
+       "ux uy vx vy sxx syy szz sxy pressure q shear_strain plastic_strain yield (SI units, stress tension-positive, "
+       "pressure compression-positive).",
+       "local uy = soil:field(\"uy\"); print(#uy, uy[1])"},
+      {"body:set_velocity", "b:set_velocity{vx, vy} | b:set_velocity(function(x, y) return vx, vy end)",
+       "Sets the particles' velocity (m/s), uniform or as a function of position.",
+       "bar:set_velocity(function(x, y) return 0.1 * math.sin(math.pi * x / 50), 0 end)"},
+      // --- probe
+      {"probe:name", "p:name()", "The probe's name.", "print(p1:name())"},
+      {"probe:get", "p:get(field)", "The current value of a field of the probe's particle.", "print(p1:get(\"uy\"))"},
+      {"probe:series", "p:series(field)", "The recorded history: two arrays, times (s) and values.",
+       "local t, uy = p1:series(\"uy\")"},
+      // --- others
+      {"history:at", "h:at(t)", "The history's value at time t (s).", "print(vx:at(0.5))"},
+      {"shape:contains", "s:contains{x, y}", "Whether the point lies inside the shape.",
+       "print(s:contains{0.1, 0.1})"},
+      {"material:kind", "mat:kind()", "The constitutive model's name.", "print(rock:kind())"},
+      // --- Lua library (lua/seismpm.lua)
+      {"mpm.geometry.slope", "mpm.geometry.slope{ left, right, base = 0, crest = {x, y}, toe_level, angle }",
+       "The polygon of a slope in a box from x = left to right (m) above `base`: level crest ground at height crest[2] "
+       "from `left` to crest[1], a face falling to the right at `angle` degrees (0 < angle < 90) down to toe_level, "
+       "then level toe ground to `right`. Returns an mpm.shape.polygon (Lua library, lua/seismpm.lua).",
+       "local s = mpm.geometry.slope{ left = 0, right = 0.9, crest = {0.35, 0.53}, toe_level = 0.2, angle = 45 }"},
+      {"mpm.geometry.layers", "mpm.geometry.layers{ left, right, base = 0, {top = y, name = ...}, ... }",
+       "Horizontal layers from `left` to `right` (m), listed from the bottom up by their top elevation: returns a list "
+       "of { name =, shape = rectangle } (Lua library).",
+       "for _, l in ipairs(mpm.geometry.layers{ left = 0, right = 10, {top = 2, name = \"clay\"}, {top = 5, name = \"sand\"} }) do print(l.name) end"},
+  };
+  return docs;
+}
+
+const ApiDoc* find_doc(const std::string& name) {
+  for (const auto& d : api_docs())
+    if (name == d.name) return &d;
+  return nullptr;
+}
+
+std::string api_markdown() {
+  std::ostringstream os;
+  os << "# Lua API reference\n\n"
+     << "Generated from the same text `help()` shows in the console (`seismpm --api-doc`). Every function takes one\n"
+     << "table of named arguments; an unknown key, a missing required key, a wrong type or a value out of range\n"
+     << "raises an error naming the key and the allowed range. SI units (m, kg, s, Pa); angles in degrees.\n";
+  std::string group;
+  for (const auto& d : api_docs()) {
+    const std::string name = d.name;
+    // Group by module (mpm.shape) or by object (model:, body:).
+    const std::string g = name.find(':') != std::string::npos ? name.substr(0, name.find(':'))
+                          : name.rfind("mpm.", 0) == 0    ? name.substr(0, name.rfind('.'))
+                                                          : "console";
+    if (g != group) {
+      group = g;
+      os << "\n## " << g << "\n";
+    }
+    os << "\n### `" << d.signature << "`\n\n" << d.summary << "\n\n```lua\n" << d.example << "\n```\n";
+  }
+  return os.str();
+}
+
+}  // namespace seismpm::lua

@@ -1,0 +1,113 @@
+// Methods of a body: count, centroid, field, name, set_velocity.
+#include <sstream>
+
+#include "binding.hpp"
+#include "core/particle_fields.hpp"
+#include "objects.hpp"
+
+namespace seismpm::lua {
+
+namespace {
+
+BodyObject& self(lua_State* L) { return check_object<BodyObject>(L, 1, kBodyType, "self"); }
+
+// Indices of the body's particles in creation (id) order.
+std::vector<std::size_t> particles_of(const BodyObject& b) {
+  const auto& m = b.handle->model;
+  std::vector<std::size_t> out;
+  for (std::size_t id = 0; id < m.particles().size(); ++id) {
+    const std::size_t p = m.index_of(static_cast<int>(id));
+    if (m.particles().body[p] == b.body) out.push_back(p);
+  }
+  return out;
+}
+
+int body_tostring(lua_State* L) {
+  const auto& b = self(L);
+  std::ostringstream os;
+  os << "body '" << b.handle->model.bodies()[b.body].name << "': " << particles_of(b).size() << " particles";
+  lua_pushstring(L, os.str().c_str());
+  return 1;
+}
+
+int body_name(lua_State* L) {
+  const auto& b = self(L);
+  lua_pushstring(L, b.handle->model.bodies()[b.body].name.c_str());
+  return 1;
+}
+
+int body_count(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(particles_of(self(L)).size()));
+  return 1;
+}
+
+int body_centroid(lua_State* L) {
+  const auto& b = self(L);
+  const Vec<2> c = b.handle->model.centroid(b.body);
+  lua_createtable(L, 2, 0);
+  lua_pushnumber(L, c[0]);
+  lua_rawseti(L, -2, 1);
+  lua_pushnumber(L, c[1]);
+  lua_rawseti(L, -2, 2);
+  return 1;
+}
+
+int body_field(lua_State* L) {
+  const auto& b = self(L);
+  const char* name = lua_tostring(L, 2);
+  if (!name) throw Error("expects a field name, one of: " + field_names(2));
+  const auto f = parse_field(name, 2);
+  if (!f) throw Error(std::string("unknown field '") + name + "' (fields: " + field_names(2) + ")");
+  const auto list = particles_of(b);
+  lua_createtable(L, static_cast<int>(list.size()), 0);
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    lua_pushnumber(L, field_value(b.handle->model.particles(), list[k], *f));
+    lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
+  }
+  return 1;
+}
+
+// body:set_velocity{vx, vy} or body:set_velocity(function(x, y) return vx, vy end)
+int body_set_velocity(lua_State* L) {
+  auto& b = self(L);
+  auto& p = b.handle->model.particles();
+  const auto list = particles_of(b);
+  if (lua_isfunction(L, 2)) {
+    for (std::size_t k : list) {
+      lua_pushvalue(L, 2);
+      lua_pushnumber(L, p.x[k][0]);
+      lua_pushnumber(L, p.x[k][1]);
+      if (lua_pcall(L, 2, 2, 0) != LUA_OK) {
+        std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error";
+        lua_pop(L, 1);
+        throw Error("the velocity function failed: " + msg);
+      }
+      if (!lua_isnumber(L, -2) || !lua_isnumber(L, -1))
+        throw Error("the velocity function must return two numbers vx, vy");
+      p.v[k] = Vec<2>(lua_tonumber(L, -2), lua_tonumber(L, -1));
+      lua_pop(L, 2);
+      if (!p.v[k].allFinite()) throw Error("the velocity function returned a non-finite value");
+    }
+  } else {
+    const Vec<2> v = to_point(L, 2, "the velocity");
+    for (std::size_t k : list) p.v[k] = v;
+  }
+  return 0;
+}
+
+}  // namespace
+
+void open_body(lua_State* L) {
+  new_type<BodyObject>(L, kBodyType);
+  set_function<body_name>(L, -1, "name", "body:name");
+  set_function<body_count>(L, -1, "count", "body:count");
+  set_function<body_centroid>(L, -1, "centroid", "body:centroid");
+  set_function<body_field>(L, -1, "field", "body:field");
+  set_function<body_set_velocity>(L, -1, "set_velocity", "body:set_velocity");
+  lua_pop(L, 1);
+  luaL_getmetatable(L, kBodyType);
+  set_function<body_tostring>(L, -1, "__tostring", "body:__tostring");
+  lua_pop(L, 1);
+}
+
+}  // namespace seismpm::lua

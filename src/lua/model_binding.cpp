@@ -1,0 +1,251 @@
+// mpm.model and the model's methods: body, fix, probe, step, run and inspection.
+#include <cmath>
+#include <sstream>
+
+#include "binding.hpp"
+#include "core/error.hpp"
+#include "objects.hpp"
+#include "session.hpp"
+
+namespace seismpm::lua {
+
+namespace {
+
+ModelHandle& self(lua_State* L) { return *check_object<ModelObject>(L, 1, kModelType, "self").handle; }
+
+std::string point_text(const Vec<2>& p) {
+  std::ostringstream os;
+  os << "{" << p[0] << ", " << p[1] << "}";
+  return os.str();
+}
+
+int model_new(lua_State* L) {
+  Args a(L, 1, {"domain", "cell", "shape", "scheme", "gravity", "cfl", "flip", "dt"});
+  ModelSettings<2> s;
+  if (a.push("domain") != LUA_TTABLE) throw Error("key 'domain' must be {{x0, y0}, {x1, y1}} (m)");
+  if (luaL_len(L, -1) != 2) throw Error("key 'domain' must hold 2 corner points {{x0, y0}, {x1, y1}}");
+  lua_rawgeti(L, -1, 1);
+  if (lua_istable(L, -1) && luaL_len(L, -1) == 3) throw Error("3D models are not available from Lua yet (domain has 3 coordinates)");
+  s.lower = to_point(L, -1, "domain corner 1");
+  lua_rawgeti(L, -2, 2);
+  s.upper = to_point(L, -1, "domain corner 2");
+  lua_pop(L, 3);
+  for (int d = 0; d < 2; ++d)
+    if (!(s.upper[d] > s.lower[d]))
+      throw Error("key 'domain' is empty: the second corner must be above and right of the first, got " +
+                  point_text(s.lower) + " to " + point_text(s.upper));
+  s.cell = Args::positive("cell", a.number("cell"), "m");
+  s.shape = a.choice("shape", {"linear", "gimp"}, "gimp") == "linear" ? ShapeKind::Linear : ShapeKind::Gimp;
+  s.scheme = a.choice("scheme", {"musl", "usl"}, "musl") == "usl" ? Scheme::Usl : Scheme::Musl;
+  s.gravity = a.has("gravity") ? a.point("gravity") : Vec<2>(0.0, -9.81);
+  s.cfl = Args::in_range("cfl", a.number("cfl", 0.4), 1e-6, 1.0, false);
+  s.flip = Args::in_range("flip", a.number("flip", 1.0), 0.0, 1.0, false);
+  if (auto dt = a.optional_number("dt")) s.fixed_dt = Args::positive("dt", *dt, "s");
+  for (int d = 0; d < 2; ++d)
+    if ((s.upper[d] - s.lower[d]) / s.cell < 2.0 - 1e-9)
+      throw Error("key 'cell' is too large: the domain must span at least 2 cells along x and y");
+  auto handle = std::make_shared<ModelHandle>(s);
+  push_object(L, kModelType, ModelObject{handle});
+  return 1;
+}
+
+int model_tostring(lua_State* L) {
+  const auto& m = self(L).model;
+  std::ostringstream os;
+  os << "model: " << m.grid().cells(0) << " x " << m.grid().cells(1) << " cells of " << m.grid().cell() << " m, "
+     << m.bodies().size() << " bodies, " << m.particles().size() << " particles, t = " << m.time() << " s";
+  lua_pushstring(L, os.str().c_str());
+  return 1;
+}
+
+int model_body(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  ModelHandle& h = *handle;
+  Args a(L, 2, {"name", "material", "shape", "ppc"});
+  const std::string name = a.string("name", "body" + std::to_string(h.model.bodies().size() + 1));
+  for (const auto& b : h.model.bodies())
+    if (b.name == name) throw Error("key 'name': a body called '" + name + "' exists already");
+  a.push("material");
+  const auto& mat = check_object<MaterialObject>(L, -1, kMaterialType, "key 'material'");
+  lua_pop(L, 1);
+  const int ppc = static_cast<int>(Args::in_range("ppc", a.integer("ppc", 2), 1, 8, false));
+  if (a.push("shape") == LUA_TNIL) throw Error("missing key 'shape' (an mpm.shape.rectangle/polygon/polyline)");
+  const auto region = check_object<ShapeObject>(L, -1, kShapeType, "key 'shape'").region;
+  lua_pop(L, 1);
+
+  const auto& g = h.model.grid();
+  const double tol = 1e-9 * g.cell();
+  const Vec<2> lo = g.origin(), hi = g.upper();
+  if ((region->lower().array() < lo.array() - tol).any() || (region->upper().array() > hi.array() + tol).any())
+    throw Error("key 'shape': " + region->describe() + " reaches outside the domain " + point_text(lo) + " to " +
+                point_text(hi));
+  const int body = h.model.add_body(name, ppc);
+  const int material = h.material(mat.material);
+  const std::size_t added =
+      h.model.fill(body, material, region->lower(), region->upper(), [&](const Vec<2>& x) { return region->contains(x); });
+  if (added == 0)
+    throw Error("key 'shape': " + region->describe() + " holds no particle at ppc = " + std::to_string(ppc) +
+                " (smaller than a particle spacing of " + std::to_string(g.cell() / ppc) + " m?)");
+  push_object(L, kBodyType, BodyObject{handle, body});
+  return 1;
+}
+
+int model_fix(lua_State* L) {
+  ModelHandle& h = self(L);
+  Args a(L, 2, {"side", "dof"});
+  const std::string side = a.choice("side", {"left", "right", "bottom", "top"}, "");
+  const std::string dof = a.choice("dof", {"x", "y", "xy"}, "xy");
+  h.model.grid().fix(parse_side(side, 2), parse_dof(dof, 2));
+  return 0;
+}
+
+int model_probe(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  Args a(L, 2, {"name", "body", "at", "every"});
+  const std::string name = a.string("name", "probe" + std::to_string(handle->probes.size() + 1));
+  for (const auto& p : handle->probes)
+    if (std::string(p->name()) == name) throw Error("key 'name': a probe called '" + name + "' exists already");
+  a.push("body");
+  const int body = check_object<BodyObject>(L, -1, kBodyType, "key 'body'").body;
+  lua_pop(L, 1);
+  const Vec<2> at = a.point("at");
+  const double every = Args::at_least("every", a.number("every", 0.01), 0.0, "s");
+  // The particle of the body nearest to `at`.
+  const auto& p = handle->model.particles();
+  double best = INFINITY;
+  int id = -1;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body[i] == body && (p.x[i] - at).norm() < best) best = (p.x[i] - at).norm(), id = p.id[i];
+  if (id < 0) throw Error("key 'body' has no particles");
+  auto probe = std::make_shared<Probe<2>>(handle->model, name, id, every);
+  handle->model.add_fix(probe);
+  handle->probes.push_back(probe);
+  push_object(L, kProbeType, ProbeObject{handle, probe});
+  return 1;
+}
+
+// Steps until `duration` more seconds have passed, with progress, Ctrl-C and probes at the end.
+void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps) {
+  Session& s = session(L);
+  Model<2>& m = h.model;
+  Progress progress(stderr, s.progress);
+  const double end = m.time() + duration;
+  progress.start(h.phase, m.time(), end, m.particles().size(), m.steps());
+  s.interrupted = false;
+  long taken = 0;
+  try {
+    // Steps shorter than 1e-9 of the duration are round-off, not time.
+    const double slack = std::isfinite(duration) ? 1e-9 * duration : 0.0;
+    while (end - m.time() > slack && taken < max_steps) {
+      if (s.interrupted) {
+        progress.finish(m.time(), m.steps(), "interrupted");
+        std::ostringstream os;
+        os << "interrupted (Ctrl-C) at t = " << m.time() << " s, step " << m.steps() << "; the model is intact";
+        throw Error(os.str());
+      }
+      m.step(end - m.time());
+      ++taken;
+      progress.update(m.time(), m.steps(), m.dt());
+    }
+  } catch (const SimulationError&) {
+    progress.finish(m.time(), m.steps(), "failed");
+    for (auto& p : h.probes) p->sample(m);
+    throw;
+  }
+  for (auto& p : h.probes) p->sample(m);
+  progress.finish(m.time(), m.steps(), "done");
+}
+
+int model_step(lua_State* L) {
+  ModelHandle& h = self(L);
+  lua_Integer n = 1;
+  if (!lua_isnoneornil(L, 2)) {
+    if (!lua_isinteger(L, 2) || lua_tointeger(L, 2) < 1) throw Error("the number of steps must be a whole number >= 1");
+    n = lua_tointeger(L, 2);
+  }
+  run_for(L, h, INFINITY, n);
+  return 0;
+}
+
+int model_run(lua_State* L) {
+  ModelHandle& h = self(L);
+  Args a(L, 2, {"duration", "damping"});
+  const double duration = Args::positive("duration", a.number("duration"), "s");
+  const auto damping = a.optional_number("damping");
+  if (damping) {
+    Args::in_range("damping", *damping, 0.0, 1.0, true);
+    if (!h.damping) {
+      h.damping = std::make_shared<LocalDamping<2>>(0.0);
+      h.model.add_fix(h.damping);
+    }
+    h.damping->set_alpha(*damping);
+  }
+  run_for(L, h, duration, std::numeric_limits<long>::max());
+  return 0;
+}
+
+int model_time(lua_State* L) {
+  lua_pushnumber(L, self(L).model.time());
+  return 1;
+}
+
+int model_steps(lua_State* L) {
+  lua_pushinteger(L, self(L).model.steps());
+  return 1;
+}
+
+int model_dt(lua_State* L) {
+  const auto& m = self(L).model;
+  // Before the first step: the step the CFL condition would take now.
+  lua_pushnumber(L, m.steps() > 0 ? m.dt() : (m.particles().size() ? m.stable_time_step() : 0.0));
+  return 1;
+}
+
+int model_energy(lua_State* L) {
+  const auto& m = self(L).model;
+  lua_createtable(L, 0, 2);
+  lua_pushnumber(L, m.kinetic_energy());
+  lua_setfield(L, -2, "kinetic");
+  lua_pushnumber(L, m.strain_energy());
+  lua_setfield(L, -2, "strain");
+  return 1;
+}
+
+int model_count(lua_State* L) {
+  lua_pushinteger(L, static_cast<lua_Integer>(self(L).model.particles().size()));
+  return 1;
+}
+
+int model_bodies(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  lua_newtable(L);
+  for (std::size_t b = 0; b < handle->model.bodies().size(); ++b) {
+    push_object(L, kBodyType, BodyObject{handle, static_cast<int>(b)});
+    lua_setfield(L, -2, handle->model.bodies()[b].name.c_str());
+  }
+  return 1;
+}
+
+}  // namespace
+
+void open_model(lua_State* L, int mpm) {
+  new_type<ModelObject>(L, kModelType);
+  set_function<model_body>(L, -1, "body", "model:body");
+  set_function<model_fix>(L, -1, "fix", "model:fix");
+  set_function<model_probe>(L, -1, "probe", "model:probe");
+  set_function<model_step>(L, -1, "step", "model:step");
+  set_function<model_run>(L, -1, "run", "model:run");
+  set_function<model_time>(L, -1, "time", "model:time");
+  set_function<model_steps>(L, -1, "steps", "model:steps");
+  set_function<model_dt>(L, -1, "dt", "model:dt");
+  set_function<model_energy>(L, -1, "energy", "model:energy");
+  set_function<model_count>(L, -1, "count", "model:count");
+  set_function<model_bodies>(L, -1, "bodies", "model:bodies");
+  lua_pop(L, 1);
+  luaL_getmetatable(L, kModelType);
+  set_function<model_tostring>(L, -1, "__tostring", "model:__tostring");
+  lua_pop(L, 1);
+  set_function<model_new>(L, mpm, "model", "mpm.model");
+}
+
+}  // namespace seismpm::lua

@@ -1,0 +1,77 @@
+// The C++ objects behind Lua's userdata types, shared by the binding files.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/history.hpp"
+#include "core/local_damping.hpp"
+#include "core/material.hpp"
+#include "core/model.hpp"
+#include "core/probe.hpp"
+#include "core/region.hpp"
+
+namespace seismpm::lua {
+
+inline constexpr const char* kModelType = "model";
+inline constexpr const char* kBodyType = "body";
+inline constexpr const char* kProbeType = "probe";
+inline constexpr const char* kMaterialType = "material";
+inline constexpr const char* kShapeType = "shape";
+inline constexpr const char* kHistoryType = "history";
+
+// A model with what the Lua side adds to it: probes, the materials it knows, the damping fix.
+struct ModelHandle {
+  explicit ModelHandle(const ModelSettings<2>& s) : model(s) {}
+  Model<2> model;
+  std::vector<std::shared_ptr<Probe<2>>> probes;
+  std::map<const Material*, int> material_index;
+  std::shared_ptr<LocalDamping<2>> damping;
+  std::string phase = "run";
+
+  int material(const std::shared_ptr<const Material>& m) {
+    auto it = material_index.find(m.get());
+    if (it != material_index.end()) return it->second;
+    const int index = model.add_material(m);
+    material_index[m.get()] = index;
+    return index;
+  }
+};
+
+struct ModelObject {
+  std::shared_ptr<ModelHandle> handle;
+};
+struct BodyObject {
+  std::shared_ptr<ModelHandle> handle;
+  int body;
+};
+struct ProbeObject {
+  std::shared_ptr<ModelHandle> handle;
+  std::shared_ptr<Probe<2>> probe;
+};
+struct MaterialObject {
+  std::shared_ptr<const Material> material;
+  std::string summary;
+};
+struct ShapeObject {
+  std::shared_ptr<const Region> region;
+};
+struct HistoryObject {
+  std::shared_ptr<const History> history;
+};
+
+// Registration of each object's functions and methods into the `mpm` table at `mpm`.
+void open_model(lua_State* L, int mpm);
+void open_body(lua_State* L);
+void open_probe(lua_State* L);
+void open_material(lua_State* L, int mpm);
+void open_shape(lua_State* L, int mpm);
+void open_history(lua_State* L, int mpm);
+void open_help(lua_State* L, int mpm);
+
+// A number or a history at the top of the stack as a history; `what` names it in messages.
+std::shared_ptr<const History> to_history(lua_State* L, int index, const std::string& what);
+
+}  // namespace seismpm::lua

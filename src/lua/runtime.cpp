@@ -1,0 +1,154 @@
+#include "runtime.hpp"
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+
+#include "binding.hpp"
+#include "objects.hpp"
+
+namespace seismpm::lua {
+
+namespace {
+
+constexpr const char* kSessionKey = "seismpm.session";
+
+// mpm.param(name, default)
+int param(lua_State* L) {
+  const char* name = lua_tostring(L, 1);
+  if (!name || lua_type(L, 1) != LUA_TSTRING) throw Error("expects a parameter name (string) and a default");
+  const auto& params = session(L).params;
+  const auto it = params.find(name);
+  if (it == params.end()) {
+    lua_settop(L, 2);
+    return 1;
+  }
+  const std::string& v = it->second;
+  switch (lua_type(L, 2)) {
+    case LUA_TNUMBER: {
+      if (!lua_stringtonumber(L, v.c_str()))
+        throw Error(std::string("--set ") + name + "=" + v + ": a number is expected");
+      return 1;
+    }
+    case LUA_TBOOLEAN:
+      if (v == "true" || v == "1" || v == "yes") {
+        lua_pushboolean(L, 1);
+      } else if (v == "false" || v == "0" || v == "no") {
+        lua_pushboolean(L, 0);
+      } else {
+        throw Error(std::string("--set ") + name + "=" + v + ": true or false is expected");
+      }
+      return 1;
+    default:
+      lua_pushstring(L, v.c_str());
+      return 1;
+  }
+}
+
+int version(lua_State* L) {
+  lua_pushstring(L, kVersion);
+  return 1;
+}
+
+int out_dir(lua_State* L) {
+  const auto& dir = session(L).out_dir;
+  if (dir.empty())
+    lua_settop(L, 1);
+  else
+    lua_pushstring(L, dir.c_str());
+  return 1;
+}
+
+// Message handler: adds a traceback to an error message.
+int traceback(lua_State* L) {
+  const char* msg = lua_tostring(L, 1);
+  if (!msg) {
+    if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
+    msg = lua_pushfstring(L, "(error object is a %s value)", luaL_typename(L, 1));
+  }
+  luaL_traceback(L, L, msg, 1);
+  return 1;
+}
+
+}  // namespace
+
+Session& session(lua_State* L) {
+  lua_getfield(L, LUA_REGISTRYINDEX, kSessionKey);
+  auto* s = static_cast<Session*>(lua_touserdata(L, -1));
+  lua_pop(L, 1);
+  return *s;
+}
+
+Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs) : session_(session) {
+  L_ = luaL_newstate();
+  if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
+  luaL_openlibs(L_);
+  lua_pushlightuserdata(L_, &session_);
+  lua_setfield(L_, LUA_REGISTRYINDEX, kSessionKey);
+
+  lua_newtable(L_);
+  const int mpm = lua_gettop(L_);
+  open_model(L_, mpm);
+  open_body(L_);
+  open_probe(L_);
+  open_material(L_, mpm);
+  open_shape(L_, mpm);
+  open_history(L_, mpm);
+  open_help(L_, mpm);
+  set_function<param>(L_, mpm, "param", "mpm.param");
+  set_function<version>(L_, mpm, "version", "mpm.version");
+  set_function<out_dir>(L_, mpm, "out_dir", "mpm.out_dir");
+  lua_setglobal(L_, "mpm");
+
+  // The Lua library: `require "seismpm"` finds lua/seismpm.lua in the first directory that has it.
+  std::string path;
+  for (const auto& dir : library_dirs) path += dir + "/?.lua;";
+  lua_getglobal(L_, "package");
+  lua_getfield(L_, -1, "path");
+  path += lua_tostring(L_, -1);
+  lua_pop(L_, 1);
+  lua_pushstring(L_, path.c_str());
+  lua_setfield(L_, -2, "path");
+  lua_pop(L_, 1);
+  if (!run_string("require 'seismpm'", "=(seismpm library)"))
+    std::fprintf(stderr, "seismpm: the Lua library lua/seismpm.lua was not loaded (searched: %s)\n", path.c_str());
+}
+
+Runtime::~Runtime() { lua_close(L_); }
+
+int Runtime::call(int nargs, int nresults) {
+  const int base = lua_gettop(L_) - nargs;
+  lua_pushcfunction(L_, traceback);
+  lua_insert(L_, base);
+  const int status = lua_pcall(L_, nargs, nresults, base);
+  lua_remove(L_, base);
+  return status;
+}
+
+bool Runtime::run_file(const std::string& file, const std::vector<std::string>& args) {
+  lua_createtable(L_, static_cast<int>(args.size()), 1);
+  lua_pushstring(L_, file.c_str());
+  lua_rawseti(L_, -2, 0);
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    lua_pushstring(L_, args[i].c_str());
+    lua_rawseti(L_, -2, static_cast<lua_Integer>(i + 1));
+  }
+  lua_setglobal(L_, "arg");
+  if (luaL_loadfile(L_, file.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {
+    std::fprintf(stderr, "seismpm: %s\n", lua_tostring(L_, -1));
+    lua_pop(L_, 1);
+    return false;
+  }
+  return true;
+}
+
+bool Runtime::run_string(const std::string& code, const std::string& name) {
+  if (luaL_loadbuffer(L_, code.data(), code.size(), name.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {
+    std::fprintf(stderr, "seismpm: %s\n", lua_tostring(L_, -1));
+    lua_pop(L_, 1);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace seismpm::lua

@@ -1,0 +1,25 @@
+// Settings of one Lua session that the command line gives (threads, --set parameters, --out,
+// --quiet) and the Ctrl-C flag that stops a run at the next step boundary.
+#pragma once
+
+#include <lua.hpp>
+
+#include <atomic>
+#include <map>
+#include <string>
+
+#include "io/progress.hpp"
+
+namespace seismpm::lua {
+
+struct Session {
+  std::map<std::string, std::string> params;  // --set name=value
+  std::string out_dir;                        // --out: replaces every output directory when set
+  Progress::Mode progress = Progress::Mode::Log;
+  std::atomic<bool> interrupted{false};
+};
+
+// The session stored in the state's registry by open_seismpm.
+Session& session(lua_State* L);
+
+}  // namespace seismpm::lua
