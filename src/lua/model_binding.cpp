@@ -22,7 +22,9 @@ std::string point_text(const Vec<2>& p) {
 int model_new(lua_State* L) {
   Args a(L, 1, {"domain", "cell", "shape", "scheme", "gravity", "cfl", "flip", "dt"});
   ModelSettings<2> s;
-  if (a.push("domain") != LUA_TTABLE) throw Error("key 'domain' must be {{x0, y0}, {x1, y1}} (m)");
+  const int domain_type = a.push("domain");
+  if (domain_type == LUA_TNIL) throw Error("missing key 'domain' ({{x0, y0}, {x1, y1}} in m)");
+  if (domain_type != LUA_TTABLE) throw Error("key 'domain' must be {{x0, y0}, {x1, y1}} (m)");
   if (luaL_len(L, -1) != 2) throw Error("key 'domain' must hold 2 corner points {{x0, y0}, {x1, y1}}");
   lua_rawgeti(L, -1, 1);
   if (lua_istable(L, -1) && luaL_len(L, -1) == 3) throw Error("3D models are not available from Lua yet (domain has 3 coordinates)");
@@ -138,6 +140,7 @@ void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps) {
     const double slack = std::isfinite(duration) ? 1e-9 * duration : 0.0;
     while (end - m.time() > slack && taken < max_steps) {
       if (s.interrupted) {
+        lua_sethook(L, nullptr, 0, 0);  // the Ctrl-C hook would replace this message in the error handler
         progress.finish(m.time(), m.steps(), "interrupted");
         std::ostringstream os;
         os << "interrupted (Ctrl-C) at t = " << m.time() << " s, step " << m.steps() << "; the model is intact";

@@ -142,13 +142,20 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
   return true;
 }
 
-bool Runtime::run_string(const std::string& code, const std::string& name) {
+bool Runtime::execute(const std::string& code, const std::string& name, std::string& error) {
   if (luaL_loadbuffer(L_, code.data(), code.size(), name.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {
-    std::fprintf(stderr, "seismpm: %s\n", lua_tostring(L_, -1));
+    error = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : "(error object is not a string)";
     lua_pop(L_, 1);
     return false;
   }
   return true;
+}
+
+bool Runtime::run_string(const std::string& code, const std::string& name) {
+  std::string error;
+  if (execute(code, name, error)) return true;
+  std::fprintf(stderr, "seismpm: %s\n", error.c_str());
+  return false;
 }
 
 }  // namespace seismpm::lua

@@ -27,6 +27,8 @@ class Runtime {
   bool run_file(const std::string& file, const std::vector<std::string>& args);
   // Runs a chunk; `name` appears in messages.
   bool run_string(const std::string& code, const std::string& name);
+  // Runs a chunk; on failure returns false and leaves the message (with traceback) in `error`.
+  bool execute(const std::string& code, const std::string& name, std::string& error);
   // Compiles and runs a chunk, printing any error; used by the console. Returns the status.
   int call(int nargs, int nresults);
 

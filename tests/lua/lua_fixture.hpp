@@ -1,0 +1,28 @@
+// A fresh Lua runtime per test, quiet, with the project's Lua library.
+#pragma once
+
+#include <string>
+
+#include "lua/runtime.hpp"
+
+namespace seismpm::test {
+
+struct LuaFixture {
+  lua::Session session;
+  lua::Runtime runtime;
+
+  LuaFixture() : runtime(init(session), {SEISMPM_SOURCE_LUA_DIR}) {}
+
+  static lua::Session& init(lua::Session& s) {
+    s.progress = Progress::Mode::Quiet;
+    return s;
+  }
+
+  // Runs a chunk; returns "" on success, the error message otherwise.
+  std::string error_of(const std::string& code) {
+    std::string error;
+    return runtime.execute(code, "=test", error) ? std::string() : error;
+  }
+};
+
+}  // namespace seismpm::test

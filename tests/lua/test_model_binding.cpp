@@ -1,0 +1,224 @@
+// The Lua API driving the kernel: good scripts give the physics, bad ones a named error.
+#include <catch2/catch.hpp>
+
+#include "lua_fixture.hpp"
+
+using seismpm::test::LuaFixture;
+
+namespace {
+const char* kBlock = R"(
+  m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.05, gravity = {0, -9.81} }
+  mat = mpm.material.linear_elastic{ density = 2000, young = 1e7, poisson = 0.3 }
+  blk = m:body{ name = "block", material = mat, shape = mpm.shape.rectangle{ 0.3, 0.5, 0.7, 0.9 } }
+)";
+}
+
+TEST_CASE("a free-falling block in Lua drops 0.5 g t^2", "[lua][model]") {
+  LuaFixture f;
+  const std::string error = f.error_of(std::string(kBlock) + R"(
+    local y0, dt = blk:centroid()[2], m:dt()  -- the CFL step before the run: the largest one
+    p = m:probe{ name = "top", body = blk, at = {0.5, 0.9}, every = 0.01 }
+    m:run{ duration = 0.2 }
+    -- Symplectic Euler: v exact, the drop between 0.5 g t^2 and 0.5 g t (t + dt).
+    local drop = y0 - blk:centroid()[2]
+    assert(drop > 0.5 * 9.81 * 0.2^2 and drop < 0.5 * 9.81 * 0.2 * (0.2 + 1.01 * dt), "drop " .. drop)
+    assert(math.abs(m:time() - 0.2) < 1e-12, "time " .. m:time())
+    assert(blk:count() == 256 and m:count() == 256, "count " .. blk:count())
+    local t, uy = p:series("uy")
+    assert(#t == 21 and #uy == 21, "samples " .. #t)
+    assert(math.abs(uy[#uy] - p:get("uy")) < 1e-15)
+    assert(math.abs(uy[#uy] + drop) < 1e-12, "probe uy " .. uy[#uy])
+    local vy = blk:field("vy")
+    assert(#vy == 256 and math.abs(vy[1] + 9.81 * 0.2) < 1e-9, "vy " .. vy[1])
+    local e = m:energy()
+    assert(math.abs(e.kinetic - 0.5 * 2000 * 0.16 * (9.81 * 0.2)^2) < 1e-6 * e.kinetic, "kinetic " .. e.kinetic)
+    assert(m:steps() > 10 and m:dt() > 0)
+    assert(tostring(m):find("256 particles") and tostring(blk):find("block"))
+  )");
+  CHECK(error == "");
+}
+
+TEST_CASE("a concave polygon is filled exactly where it is", "[lua][shape]") {
+  LuaFixture f;
+  const std::string error = f.error_of(R"(
+    local m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.02 }
+    local mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.2 }
+    -- An L: the square [0.1, 0.9]^2 without its upper-right quarter [0.5, 0.9]^2, clockwise.
+    local L = mpm.shape.polygon{ {0.1, 0.1}, {0.1, 0.9}, {0.5, 0.9}, {0.5, 0.5}, {0.9, 0.5}, {0.9, 0.1} }
+    assert(L:contains{0.3, 0.7} and not L:contains{0.7, 0.7} and L:contains{0.7, 0.3})
+    local b = m:body{ material = mat, shape = L, ppc = 2 }
+    local area = 0.8 * 0.8 - 0.4 * 0.4
+    assert(b:count() == math.floor(area / 0.01^2 + 0.5), "count " .. b:count())
+    for _, x in ipairs(b:field("x")) do end
+    local xs, ys = b:field("x"), b:field("y")
+    for i = 1, #xs do assert(not (xs[i] > 0.5 and ys[i] > 0.5), "particle in the notch") end
+    local band = m:body{ name = "band", material = mat, ppc = 1,
+                         shape = mpm.shape.polyline{ {0.05, 0.95}, {0.95, 0.95}, thickness = 0.03 } }
+    assert(band:count() == 46, "band " .. band:count())  -- one row, x = 0.05 .. 0.95
+    local slope = mpm.geometry.slope{ left = 0, right = 0.9, crest = {0.35, 0.53}, toe_level = 0.2, angle = 45 }
+    assert(slope:contains{0.1, 0.5} and not slope:contains{0.8, 0.3} and slope:contains{0.8, 0.19})
+    local layers = mpm.geometry.layers{ left = 0, right = 1, {top = 0.2, name = "clay"}, {top = 0.5} }
+    assert(#layers == 2 and layers[1].name == "clay" and layers[2].name == "layer2")
+  )");
+  CHECK(error == "");
+}
+
+TEST_CASE("histories and parameters", "[lua][history]") {
+  LuaFixture f;
+  f.session.params["cell"] = "0.05";
+  f.session.params["rough"] = "true";
+  f.session.params["name"] = "slope";
+  const std::string csv = "/tmp/seismpm_test_history.csv";
+  {
+    std::FILE* out = std::fopen(csv.c_str(), "w");
+    std::fputs("# a table velocity\nt, vx\n0, 0\n1, 0.5\n2, 0.5\n", out);
+    std::fclose(out);
+  }
+  const std::string error = f.error_of(R"(
+    local h = mpm.history.table{ {0, 0}, {1, 2}, {3, 2} }
+    assert(h:at(0.5) == 1 and h:at(2) == 2 and h:at(-1) == 0 and h:at(4) == 0)
+    local c = mpm.history.csv{ file = "/tmp/seismpm_test_history.csv", time = "t", value = "vx", scale = 2, shift = 1 }
+    assert(math.abs(c:at(1.5) - 0.5) < 1e-15 and c:at(2) == 1 and c:at(0.5) == 0)
+    local s = mpm.history.fn(function(t) return 3 * t end)
+    assert(s:at(2) == 6)
+    assert(mpm.param("cell", 0.1) == 0.05 and mpm.param("rough", false) == true)
+    assert(mpm.param("name", "x") == "slope" and mpm.param("missing", 7) == 7)
+    assert(tostring(c):find("3 points"))
+  )");
+  CHECK(error == "");
+  f.session.params["cell"] = "fine";
+  CHECK_THAT(f.error_of("mpm.param('cell', 0.1)"), Catch::Contains("--set cell=fine: a number is expected"));
+}
+
+TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors]") {
+  using Catch::Contains;
+  const char* domain = "domain = {{0, 0}, {1, 1}}";
+  struct Case {
+    std::string code, expected;
+  };
+  const std::string mat = "mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3 } ";
+  const std::string model = std::string("m = mpm.model{ ") + domain + ", cell = 0.1 } " + mat;
+  const std::vector<Case> cases = {
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, foo = 1 }", "mpm.model: unknown key 'foo' (allowed: domain"},
+      {"mpm.model{ cell = 0.1 }", "mpm.model: missing key 'domain'"},
+      {std::string("mpm.model{ ") + domain + " }", "missing key 'cell'"},
+      {std::string("mpm.model{ ") + domain + ", cell = 'fine' }", "key 'cell' must be a number, got string"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0 }", "key 'cell' must be > 0 (m), got 0"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, shape = 'cubic' }", "key 'shape' must be one of linear|gimp"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, cfl = 2 }", "key 'cfl' must be in [1e-06, 1]"},
+      {"mpm.model{ domain = {{0, 0}, {0, 1}}, cell = 0.1 }", "key 'domain' is empty"},
+      {"mpm.model{ domain = {{0, 0, 0}, {1, 1, 1}}, cell = 0.1 }", "3D models are not available"},
+      {"mpm.model(5)", "expects a table of named arguments"},
+      {"mpm.material.linear_elastic{ density = 1000, young = 0, poisson = 0.3 }", "key 'young' must be > 0 (Pa)"},
+      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.5 }", "key 'poisson' must be in [0, 0.5)"},
+      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = -0.1 }", "key 'poisson' must be in [0, 0.5)"},
+      {"mpm.material.linear_elastic{ density = -1, young = 1e6, poisson = 0.3 }", "key 'density' must be > 0"},
+      {"mpm.shape.polygon{ {0, 0}, {1, 0} }", "polygon needs at least 3 points"},
+      {"mpm.shape.polygon{ {0, 0}, {1, 1}, {1, 0}, {0, 1} }", "self-intersecting"},
+      {"mpm.shape.polygon{ {0, 0}, {1, 'a'}, {1, 0} }", "point 2 must be a point {x, y} of numbers"},
+      {"mpm.shape.rectangle{ 1, 0, 0, 1 }", "x0 < x1"},
+      {"mpm.shape.polyline{ {0, 0}, {1, 0}, thickness = 0 }", "key 'thickness' must be > 0"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.5, 0.5, 1.5, 0.9} }", "reaches outside the domain"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 0 }", "key 'ppc' must be in [1, 8]"},
+      {model + "m:body{ shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }", "key 'material' must be a material, got nil"},
+      {model + "m:body{ material = 5, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }", "key 'material' must be a material, got number"},
+      {model + "m:body{ material = mat }", "missing key 'shape'"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.11, 0.11} }", "holds no particle"},
+      {model + "m:body{ name = 'a', material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }"
+               "m:body{ name = 'a', material = mat, shape = mpm.shape.rectangle{0.6, 0.6, 0.9, 0.9} }", "a body called 'a' exists"},
+      {model + "m:fix{ side = 'up' }", "key 'side' must be one of left|right|bottom|top, got 'up'"},
+      {model + "m:fix{ side = 'left', dof = 'z' }", "key 'dof' must be one of x|y|xy"},
+      {model + "m:run{ duration = -1 }", "key 'duration' must be > 0 (s)"},
+      {model + "m:step(0)", "whole number >= 1"},
+      {model + "m:probe{ at = {0.5, 0.5} }", "key 'body' must be a body, got nil"},
+      {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:field('speed')", "unknown field 'speed'"},
+      {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:set_velocity{5, 0} m:run{ duration = 1 }", "left the grid"},
+      {"mpm.history.table{ {0, 0}, {1, 1}, {1, 2} }", "times must increase (point 3)"},
+      {"mpm.history.csv{ file = '/nonexistent.csv', value = 'v' }", "/nonexistent.csv: cannot open"},
+      {"mpm.history.fn(5)", "expects a function of time"},
+      {"mpm.history.table{ {0, 0} }:at('x')", "expects a time t (s), got string"},
+      {model + "local time = getmetatable(m).__index.time; time(5)", "self must be a model, got number"},
+  };
+  for (const auto& c : cases) {
+    LuaFixture f;
+    CAPTURE(c.code);
+    const std::string error = f.error_of(c.code);
+    CHECK_THAT(error, Contains(c.expected) && Contains("test:1:"));
+  }
+}
+
+TEST_CASE("csv histories name the file and the line of bad data", "[lua][errors]") {
+  const std::string file = "/tmp/seismpm_test_bad.csv";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"t, v\n0, 0\n1, x\n", ":3: column 'v' is not a number ('x')"},
+      {"t, w\n0, 0\n", ":1: no column 'v' in the header (columns: t, w)"},
+      {"t, v\n0, 0\n2, 1\n1, 2\n", ":4: times must increase"},
+      {"", ": empty file"},
+      {"t, v\n", ":1: no data rows"},
+      {"t, v\n0\n", ":2: column 'v' is missing"},
+  };
+  for (const auto& [text, expected] : cases) {
+    std::FILE* out = std::fopen(file.c_str(), "w");
+    std::fputs(text.c_str(), out);
+    std::fclose(out);
+    LuaFixture f;
+    CAPTURE(text);
+    CHECK_THAT(f.error_of("mpm.history.csv{ file = '" + file + "', time = 't', value = 'v' }"),
+               Catch::Contains(file + expected));
+  }
+}
+
+TEST_CASE("no input, however wrong, crashes the program", "[lua][errors][fuzz]") {
+  LuaFixture f;
+  // Every function and method with every kind of wrong value: each must raise a Lua error or work.
+  const std::string error = f.error_of(std::string(kBlock) + R"(
+    local values = { "nil", 1, -1, 0, 1e308, 0/0, "x", {}, {1, 2, 3}, {{}}, {{1, 2}, {1}}, true, print,
+                     {domain = 5}, {cell = -1}, {name = {}}, blk, m, mat, mpm.shape.rectangle{0, 0, 1, 1} }
+    local objects = { m = m, blk = blk, mat = mat, shape = mpm.shape.rectangle{0, 0, 1, 1},
+                      h = mpm.history.table{{0, 0}, {1, 1}}, p = m:probe{ body = blk, at = {0.5, 0.5} } }
+    local calls = 0
+    local function try(f, ...)
+      calls = calls + 1
+      pcall(f, ...)
+    end
+    local function each_function(t, seen)
+      for _, f in pairs(t) do
+        if type(f) == "function" and f ~= help then
+          for _, a in ipairs(values) do
+            if a == "nil" then a = nil end
+            try(f, a)
+            for _, b in ipairs(values) do try(f, a, b ~= "nil" and b or nil) end
+          end
+        elseif type(f) == "table" and not seen[f] then
+          seen[f] = true
+          each_function(f, seen)
+        end
+      end
+    end
+    each_function(mpm, {})
+    for _, obj in pairs(objects) do
+      local methods = getmetatable(obj).__index
+      for name, f in pairs(methods) do
+        if name ~= "run" and name ~= "step" then
+          for _, a in ipairs(values) do try(f, obj, a ~= "nil" and a or nil); try(f, a ~= "nil" and a or nil) end
+        end
+      end
+    end
+    assert(calls > 2000, "calls " .. calls)
+  )");
+  CHECK(error == "");
+}
+
+TEST_CASE("console completion offers globals, fields and methods", "[lua][console]") {
+  LuaFixture f;
+  const std::string error = f.error_of(std::string(kBlock) + R"(
+    local function has(list, x) for _, v in ipairs(list) do if v == x then return true end end return false end
+    assert(has(mpm._complete("mpm.ma"), "mpm.material"))
+    assert(has(mpm._complete("mpm.material.lin"), "mpm.material.linear_elastic"))
+    assert(has(mpm._complete("m:ru"), "m:run") and not has(mpm._complete("m:ru"), "m:body"))
+    assert(has(mpm._complete("blk:cen"), "blk:centroid"))
+    assert(has(mpm._complete("hel"), "help"))
+    assert(#mpm._complete("nothing.here") == 0)
+  )");
+  CHECK(error == "");
+}
