@@ -32,6 +32,7 @@ void on_interrupt(int) {
 // Completion through the Lua library's mpm._complete(text).
 char** complete(const char* text, int, int) {
   rl_attempted_completion_over = 1;
+  rl_completion_append_character = '\0';  // "m:run" then "{": no space in between (reset by readline each time)
   static std::vector<std::string> matches;
   matches.clear();
   lua_State* L = g_state;
@@ -120,7 +121,8 @@ int run_console(lua::Runtime& runtime) {
     rl_readline_name = "seismpm";
     rl_attempted_completion_function = complete;
     rl_basic_word_break_characters = const_cast<char*>(" \t\n\"'()[]{},;=+-*/<>~#");
-    if (!hist.empty()) read_history(hist.c_str());
+    // append_history needs the file to exist.
+    if (!hist.empty() && read_history(hist.c_str()) != 0) write_history(hist.c_str());
     std::printf("seismpm %s: Lua %s console. help() lists the API; Ctrl-D quits.\n", lua::kVersion,
                 LUA_VERSION_MAJOR "." LUA_VERSION_MINOR);
   }
