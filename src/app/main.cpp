@@ -48,11 +48,12 @@ int main(int argc, char** argv) {
   int threads = 0;
   std::string out;
   app.add_flag("-i,--interactive", interactive, "Enter the console after running FILE and chunks");
-  app.add_option("-e,--execute", chunks, "Run a Lua chunk (may repeat)");
+  app.add_option("-e,--execute", chunks, "Run a Lua chunk (may repeat)")->allow_extra_args(false);
   app.add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
   app.add_option("--out", out, "Write every output into this directory");
   app.add_flag("--quiet", quiet, "No progress display");
-  app.add_option("--set", sets, "Scenario parameter name=value, read with mpm.param(name, default)");
+  app.add_option("--set", sets, "Scenario parameter name=value, read with mpm.param(name, default) (may repeat)")
+      ->allow_extra_args(false);
   app.add_flag("--version", version, "Print the version and exit");
   app.add_flag("--api-doc", api_doc, "Print the Lua API reference (Markdown) and exit");
   try {

@@ -221,12 +221,13 @@ void Model<Dim>::compute_stencils() {
     if (!make_stencil<Shape>(grid_, particles_.x[p], particles_.half_width[p], st[p])) outside = std::min(outside, p);
   if (outside < n) fail(outside, "is outside the grid");
 
-  const int last = Dim - 1;
-  const double origin = grid_.origin()[last], inv_h = 1.0 / grid_.cell();
-  const int cells = grid_.cells(last);
-  schedule_.build(n, cells, [&](int p) {
-    return std::clamp(static_cast<int>(std::floor((particles_.x[p][last] - origin) * inv_h)), 0, cells - 1);
-  });
+  // Cell of each particle (last axis slowest), and the scatter slabs along the last axis.
+  cell_of_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) cell_of_[p] = cell_index(particles_.x[p]);
+  int per_layer = 1;  // cells in one layer normal to the last axis
+  for (int d = 0; d < Dim - 1; ++d) per_layer *= grid_.cells(d);
+  schedule_.build(n, grid_.cells(Dim - 1), [&](int p) { return cell_of_[p] / per_layer; });
 }
 
 template <int Dim>
@@ -323,18 +324,30 @@ void Model<Dim>::update_stress() {
   auto& P = particles_;
   const auto& G = grid_;
   strain_increment_.resize(n);
+  spin_.resize(n);
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
     Mat<Dim> L = Mat<Dim>::Zero();  // velocity gradient, L_ab = dv_a / dx_b
     for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) { L.noalias() += G.velocity[i] * dN.transpose(); });
     const Mat<Dim> dL = dt * L;
-    const Mat3 d = embed<Dim>(Mat<Dim>(0.5 * (dL + dL.transpose())));
+    strain_increment_[p] = to_voigt(embed<Dim>(Mat<Dim>(0.5 * (dL + dL.transpose()))));
     const Mat3 w = embed<Dim>(Mat<Dim>(0.5 * (dL - dL.transpose())));
+    spin_[p] = Eigen::Vector3d(w(0, 1), w(1, 2), w(0, 2));
+  }
+  if (settings_.cell_volumetric_strain) average_volumetric_strain();
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) {
+    const Sym& de = strain_increment_[p];
+    Mat3 w = Mat3::Zero();
+    w(0, 1) = spin_[p][0], w(1, 0) = -spin_[p][0];
+    w(1, 2) = spin_[p][1], w(2, 1) = -spin_[p][1];
+    w(0, 2) = spin_[p][2], w(2, 0) = -spin_[p][2];
     P.stress[p] = rotate_objectively(P.stress[p], w);
-    const Sym de = to_voigt(d);
-    strain_increment_[p] = de;
     P.strain[p] += de;
-    P.volume[p] *= (Mat<Dim>::Identity() + dL).determinant();
+    // Volume from the (averaged) strain increment: V <- V (1 + tr de) to first order, exactly as det(I + dt L)
+    // when nothing is averaged.
+    const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
+    P.volume[p] *= F.template topLeftCorner<Dim, Dim>().determinant();
   }
   if (!material_lists_valid_) rebuild_material_lists();
   for (int m = 0; m < material_count(); ++m) {
@@ -348,6 +361,31 @@ void Model<Dim>::update_stress() {
     batch.plastic_strain = P.plastic_strain.data();
     batch.yield = P.yield.data();
     materials_[m]->update_stress(batch);
+  }
+}
+
+// Replaces each particle's volumetric strain increment by the volume-weighted mean of its cell,
+// keeping the deviatoric part (and, in plane strain, de_zz = 0).
+template <int Dim>
+void Model<Dim>::average_volumetric_strain() {
+  const int cells = grid_.cell_count();
+  cell_volume_.resize(cells);
+  cell_dilation_.resize(cells);
+  auto& P = particles_;
+  schedule_.for_each_in_own_cell([&](int p) {
+    cell_volume_[cell_of_[p]] = 0.0;
+    cell_dilation_[cell_of_[p]] = 0.0;
+  });
+  schedule_.for_each_in_own_cell([&](int p) {
+    cell_volume_[cell_of_[p]] += P.volume[p];
+    cell_dilation_[cell_of_[p]] += P.volume[p] * trace(strain_increment_[p]);
+  });
+  const int n = static_cast<int>(P.size());
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) {
+    const int c = cell_of_[p];
+    const double correction = (cell_dilation_[c] / cell_volume_[c] - trace(strain_increment_[p])) / Dim;
+    for (int d = 0; d < Dim; ++d) strain_increment_[p][d] += correction;
   }
 }
 
@@ -398,23 +436,23 @@ void Model<Dim>::check_particles() const {
 }
 
 template <int Dim>
+int Model<Dim>::cell_index(const Vec<Dim>& x) const {
+  int c = 0;
+  for (int d = Dim - 1; d >= 0; --d)
+    c = c * grid_.cells(d) +
+        std::clamp(static_cast<int>(std::floor((x[d] - grid_.origin()[d]) / grid_.cell())), 0, grid_.cells(d) - 1);
+  return c;
+}
+
+template <int Dim>
 void Model<Dim>::sort_particles() {
   // Counting sort by cell (last axis slowest): neighbours in memory are neighbours on the grid,
   // and each scatter slab becomes a contiguous run. Stable, so the order is deterministic.
   const int n = static_cast<int>(particles_.size());
   const int cells = grid_.cell_count();
-  const double inv_h = 1.0 / grid_.cell();
   std::vector<int> key(n);
 #pragma omp parallel for schedule(static)
-  for (int p = 0; p < n; ++p) {
-    int k = 0;
-    for (int d = Dim - 1; d >= 0; --d) {
-      const int c = std::clamp(static_cast<int>(std::floor((particles_.x[p][d] - grid_.origin()[d]) * inv_h)), 0,
-                               grid_.cells(d) - 1);
-      k = k * grid_.cells(d) + c;
-    }
-    key[p] = k;
-  }
+  for (int p = 0; p < n; ++p) key[p] = cell_index(particles_.x[p]);
   std::vector<int> start(cells + 1, 0);
   for (int p = 0; p < n; ++p) ++start[key[p] + 1];
   for (int c = 0; c < cells; ++c) start[c + 1] += start[c];

@@ -32,6 +32,9 @@ struct ModelSettings {
   double flip = 1.0;                       // 1 = FLIP, 0 = PIC
   double fixed_dt = 0.0;                   // > 0 overrides the CFL time step (s)
   int sort_every = 20;                     // steps between sorting particles by cell
+  // Average the volumetric strain increment over each cell (B-bar style): removes the volumetric
+  // locking that isochoric plastic flow (psi = 0) and near-incompressibility cause in low-order cells.
+  bool cell_volumetric_strain = true;
 };
 
 struct Body {
@@ -101,6 +104,9 @@ class Model {
   void remap_momentum();
   template <class Shape>
   void update_stress();
+  void average_volumetric_strain();
+  // Linear index of the cell holding x (last axis slowest), clamped to the grid.
+  int cell_index(const Vec<Dim>& x) const;
   void check_particles() const;
   void sort_particles();
   void rebuild_material_lists();
@@ -121,6 +127,9 @@ class Model {
   std::vector<Stencil<Dim, LinearShape::K>> linear_stencils_;
   std::vector<Stencil<Dim, GimpShape::K>> gimp_stencils_;
   std::vector<Sym> strain_increment_;
+  std::vector<Eigen::Vector3d> spin_;   // dt skw(L) as (w_xy, w_yz, w_xz)
+  std::vector<int> cell_of_;            // cell of each particle at the start of the step
+  std::vector<double> cell_volume_, cell_dilation_;
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;
   mutable std::vector<int> index_of_id_;  // rebuilt on demand after a sort

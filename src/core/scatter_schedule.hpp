@@ -30,6 +30,16 @@ class ScatterSchedule {
     for (int p = 0; p < particle_count; ++p) order_[next[slab_of_[p]]++] = p;
   }
 
+  // Calls f(p) for every particle; slabs in parallel. For work that touches only the particle's own
+  // cell: slabs hold disjoint cells, so no colouring is needed.
+  template <class F>
+  void for_each_in_own_cell(F&& f) const {
+    const int slabs = static_cast<int>(begin_.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int s = 0; s < slabs; ++s)
+      for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
+  }
+
   // Calls f(p) for every particle; in parallel over slabs of one colour at a time.
   template <class F>
   void for_each(F&& f) const {

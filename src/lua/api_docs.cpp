@@ -17,6 +17,22 @@ const std::vector<ApiDoc>& api_docs() {
        "Isotropic linear elasticity (plane strain keeps sigma_zz). density (kg/m3, > 0), young (Pa, > 0), "
        "poisson in [0, 0.5).",
        "local rock = mpm.material.linear_elastic{ density = 2550, young = 5e8, poisson = 0.19 }"},
+      {"mpm.material.mohr_coulomb",
+       "mpm.material.mohr_coulomb{ density, young, poisson, cohesion, friction, dilation, tension, softening }",
+       "Elastic-perfectly plastic Mohr-Coulomb, non-associated. density (kg/m3, > 0), young (Pa, > 0), poisson in "
+       "[0, 0.5), cohesion (Pa, >= 0, default 0), friction in [0, 90) degrees, dilation in [0, friction] degrees "
+       "(default 0), tension = tensile strength in [0, c cot(phi)] (Pa, default 0: no tension). softening = { cohesion "
+       "=, friction =, strain = } softens c and phi linearly to these residual values at that accumulated plastic "
+       "shear strain. Particle fields plastic_strain and yield show the state.",
+       "local soil = mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, cohesion = 780, "
+       "friction = 23, dilation = 0, tension = 0 }"},
+      {"mpm.material.drucker_prager",
+       "mpm.material.drucker_prager{ density, young, poisson, cohesion, friction, dilation, tension, fit }",
+       "Drucker-Prager fitted to Mohr-Coulomb's c, phi, psi: fit = \"plane_strain\" (default: the same plane-strain "
+       "limit load as Mohr-Coulomb) | \"outer\" (compression corners) | \"inner\" (extension corners). tension "
+       "limits the mean stress (Pa, default 0). Other keys as mohr_coulomb.",
+       "local sand = mpm.material.drucker_prager{ density = 2650, young = 8.4e5, poisson = 0.3, friction = 19.8, "
+       "fit = \"plane_strain\" }"},
       {"mpm.shape.rectangle", "mpm.shape.rectangle{ x0, y0, x1, y1 }",
        "An axis-aligned rectangle (m), also as { lower = {x0, y0}, upper = {x1, y1} }.",
        "local s = mpm.shape.rectangle{ 0, 0, 0.9, 0.2 }"},

@@ -1,0 +1,55 @@
+// Elastic-perfectly plastic Mohr-Coulomb with non-associated flow, a tension cut-off and optional
+// linear softening of c and phi with accumulated plastic shear strain (PHYSICS.md, "Mohr-Coulomb").
+// The return is made in principal stresses with the trial directions kept: to the face, to either
+// edge (triaxial compression s1 = s2, extension s2 = s3), to the apex, or to the tension planes.
+#pragma once
+
+#include "core/material.hpp"
+#include "linear_elastic.hpp"
+
+namespace seismpm {
+
+struct MohrCoulombParameters {
+  double density = 0, young = 0, poisson = 0;
+  double cohesion = 0;        // Pa
+  double friction = 30;       // degrees
+  double dilation = 0;        // degrees, 0 <= psi <= phi
+  double tension = 0;         // tensile strength (Pa), 0 <= T <= c cot(phi)
+  bool softening = false;     // linear from (c, phi) to (residual_cohesion, residual_friction) ...
+  double residual_cohesion = 0, residual_friction = 0;
+  double softening_strain = 0;  // ... reached at this accumulated plastic shear strain
+};
+
+// Throws InputError naming the parameter that is out of range.
+void validate(const MohrCoulombParameters& p);
+
+class MohrCoulomb : public Material {
+ public:
+  explicit MohrCoulomb(const MohrCoulombParameters& p);
+  std::string_view kind() const override { return "mohr_coulomb"; }
+  double p_wave_modulus() const override { return elastic_.p_wave(); }
+  double shear_modulus() const override { return elastic_.shear(); }
+  double bulk_modulus() const override { return elastic_.bulk(); }
+  const MohrCoulombParameters& parameters() const { return p_; }
+  void update_stress(const StressUpdate& batch) const override;
+
+  // Which return the last integrate() made.
+  enum class Return { Elastic, Face, CompressionEdge, ExtensionEdge, Apex, Tension, TensionEdge, TensionApex, Mixed };
+  struct Result {
+    Sym stress;
+    Sym plastic_strain;      // plastic strain increment (tensor components)
+    double shear_increment;  // equivalent plastic shear strain increment sqrt(2/3 e:e)
+    Return kind;
+  };
+  // One stress-point update from `stress` with strain increment `de` at accumulated plastic
+  // shear strain `plastic`. Allocates nothing.
+  Result integrate(const Sym& stress, const Sym& de, double plastic) const;
+  // Yield function (s1 - s3) + (s1 + s3) sin(phi) - 2 c cos(phi) at the given softening state.
+  double yield_function(const Sym& stress, double plastic = 0.0) const;
+
+ private:
+  MohrCoulombParameters p_;
+  ElasticConstants elastic_;
+};
+
+}  // namespace seismpm
