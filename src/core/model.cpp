@@ -7,6 +7,8 @@
 #include "error.hpp"
 #include "objective_rate.hpp"
 
+#include <omp.h>
+
 namespace seismpm {
 
 namespace {
@@ -39,6 +41,8 @@ Model<Dim>::Model(const ModelSettings<Dim>& settings)
     : settings_(settings), grid_(settings.lower, settings.upper, settings.cell) {
   for (int d = 0; d < Dim; ++d)
     if (grid_.cells(d) < 2) throw InputError("model: the domain must span at least 2 cells along every axis");
+  for (int d = Dim - 1; d >= 0; --d)
+    if (grid_.cells(d) > grid_.cells(slab_axis_)) slab_axis_ = d;
   if (!(settings.cfl > 0.0 && settings.cfl <= 1.0)) throw InputError("model: cfl must be in (0, 1]");
   if (!(settings.flip >= 0.0 && settings.flip <= 1.0)) throw InputError("model: flip must be in [0, 1]");
   if (!(settings.fixed_dt >= 0.0)) throw InputError("model: fixed_dt must be >= 0");
@@ -159,25 +163,44 @@ void Model<Dim>::step(double dt_max) {
 template <int Dim>
 template <class Shape>
 void Model<Dim>::step_with(double dt) {
+  double t = settings_.profile ? omp_get_wtime() : 0.0;
   dt_ = dt;
   for (auto& f : fixes_) f->before_step(*this);
   grid_.reset();
+  lap("reset", t);
   compute_stencils<Shape>();        // shape functions at the start-of-step positions
+  lap("stencils", t);
   particles_to_grid<Shape>();       // nodal mass, momentum, internal + external force
+  lap("particles to grid", t);
   for (auto& f : fixes_) f->nodal_forces(*this);  // e.g. local damping
   update_nodal_velocities();        // a = f/m, v^L = mv/m + dt a
   constrain_velocities(VelocityStage::Updated);
+  lap("nodes", t);
   grid_to_particles<Shape>();       // FLIP/PIC velocity, position, displacement
+  lap("grid to particles", t);
   if (settings_.scheme == Scheme::Musl) {
     remap_momentum<Shape>();        // nodal velocity from the updated particle momentum
     constrain_velocities(VelocityStage::Remapped);
   }
+  lap("MUSL re-map", t);
   update_stress<Shape>();           // velocity gradient, objective rate, constitutive model, volume
+  lap("stress", t);
   time_ += dt;
   ++steps_;
   for (auto& f : fixes_) f->after_step(*this);
   check_particles();
   if (steps_ % settings_.sort_every == 0) sort_particles();
+  lap("checks and sorting", t);
+}
+
+template <int Dim>
+void Model<Dim>::lap(const char* stage, double& since) {
+  if (!settings_.profile) return;
+  const double now = omp_get_wtime();
+  auto it = std::find_if(stage_times_.begin(), stage_times_.end(), [&](const auto& s) { return s.first == stage; });
+  if (it == stage_times_.end()) it = stage_times_.insert(stage_times_.end(), {stage, 0.0});
+  it->second += now - since;
+  since = now;
 }
 
 template <int Dim>
@@ -225,9 +248,8 @@ void Model<Dim>::compute_stencils() {
   cell_of_.resize(n);
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) cell_of_[p] = cell_index(particles_.x[p]);
-  int per_layer = 1;  // cells in one layer normal to the last axis
-  for (int d = 0; d < Dim - 1; ++d) per_layer *= grid_.cells(d);
-  schedule_.build(n, grid_.cells(Dim - 1), [&](int p) { return cell_of_[p] / per_layer; });
+  const int per_layer = grid_.cell_count() / grid_.cells(slab_axis_);  // cells in one layer across the slab axis
+  schedule_.build(n, grid_.cells(slab_axis_), [&](int p) { return cell_of_[p] / per_layer; });
 }
 
 template <int Dim>
@@ -334,10 +356,18 @@ void Model<Dim>::update_stress() {
     const Mat3 w = embed<Dim>(Mat<Dim>(0.5 * (dL - dL.transpose())));
     spin_[p] = Eigen::Vector3d(w(0, 1), w(1, 2), w(0, 2));
   }
-  if (settings_.cell_volumetric_strain) average_volumetric_strain();
+  const bool average = settings_.cell_volumetric_strain;
+  if (average) accumulate_cell_dilation();
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
-    const Sym& de = strain_increment_[p];
+    Sym& de = strain_increment_[p];
+    if (average) {
+      // The cell's volume-weighted mean volumetric increment replaces the particle's (B-bar);
+      // the deviatoric part stays, and so does de_zz = 0 in plane strain.
+      const int c = cell_of_[p];
+      const double correction = (cell_dilation_[c] / cell_volume_[c] - trace(de)) / Dim;
+      for (int d = 0; d < Dim; ++d) de[d] += correction;
+    }
     Mat3 w = Mat3::Zero();
     w(0, 1) = spin_[p][0], w(1, 0) = -spin_[p][0];
     w(1, 2) = spin_[p][1], w(2, 1) = -spin_[p][1];
@@ -364,29 +394,17 @@ void Model<Dim>::update_stress() {
   }
 }
 
-// Replaces each particle's volumetric strain increment by the volume-weighted mean of its cell,
-// keeping the deviatoric part (and, in plane strain, de_zz = 0).
+// Volume and volume-weighted volumetric strain increment of the particles in each cell.
 template <int Dim>
-void Model<Dim>::average_volumetric_strain() {
+void Model<Dim>::accumulate_cell_dilation() {
   const int cells = grid_.cell_count();
-  cell_volume_.resize(cells);
-  cell_dilation_.resize(cells);
-  auto& P = particles_;
-  schedule_.for_each_in_own_cell([&](int p) {
-    cell_volume_[cell_of_[p]] = 0.0;
-    cell_dilation_[cell_of_[p]] = 0.0;
-  });
+  cell_volume_.assign(cells, 0.0);
+  cell_dilation_.assign(cells, 0.0);
+  const auto& P = particles_;
   schedule_.for_each_in_own_cell([&](int p) {
     cell_volume_[cell_of_[p]] += P.volume[p];
     cell_dilation_[cell_of_[p]] += P.volume[p] * trace(strain_increment_[p]);
   });
-  const int n = static_cast<int>(P.size());
-#pragma omp parallel for schedule(static)
-  for (int p = 0; p < n; ++p) {
-    const int c = cell_of_[p];
-    const double correction = (cell_dilation_[c] / cell_volume_[c] - trace(strain_increment_[p])) / Dim;
-    for (int d = 0; d < Dim; ++d) strain_increment_[p][d] += correction;
-  }
 }
 
 template <int Dim>
@@ -437,16 +455,18 @@ void Model<Dim>::check_particles() const {
 
 template <int Dim>
 int Model<Dim>::cell_index(const Vec<Dim>& x) const {
-  int c = 0;
+  auto coord = [&](int d) {
+    return std::clamp(static_cast<int>(std::floor((x[d] - grid_.origin()[d]) / grid_.cell())), 0, grid_.cells(d) - 1);
+  };
+  int c = coord(slab_axis_);
   for (int d = Dim - 1; d >= 0; --d)
-    c = c * grid_.cells(d) +
-        std::clamp(static_cast<int>(std::floor((x[d] - grid_.origin()[d]) / grid_.cell())), 0, grid_.cells(d) - 1);
+    if (d != slab_axis_) c = c * grid_.cells(d) + coord(d);
   return c;
 }
 
 template <int Dim>
 void Model<Dim>::sort_particles() {
-  // Counting sort by cell (last axis slowest): neighbours in memory are neighbours on the grid,
+  // Counting sort by cell (slab axis slowest): neighbours in memory are neighbours on the grid,
   // and each scatter slab becomes a contiguous run. Stable, so the order is deterministic.
   const int n = static_cast<int>(particles_.size());
   const int cells = grid_.cell_count();

@@ -35,6 +35,7 @@ struct ModelSettings {
   // Average the volumetric strain increment over each cell (B-bar style): removes the volumetric
   // locking that isochoric plastic flow (psi = 0) and near-incompressibility cause in low-order cells.
   bool cell_volumetric_strain = true;
+  bool profile = false;                    // time each stage of the step (Model::stage_times)
 };
 
 struct Body {
@@ -80,6 +81,9 @@ class Model {
   // The time step the CFL condition allows for the current particle state.
   double stable_time_step() const;
 
+  // Wall seconds spent in each stage of the step so far (when settings.profile is on).
+  const std::vector<std::pair<const char*, double>>& stage_times() const { return stage_times_; }
+
   // Current index of the particle created as number `id` (particles are reordered by sorting).
   std::size_t index_of(int id) const;
 
@@ -104,8 +108,9 @@ class Model {
   void remap_momentum();
   template <class Shape>
   void update_stress();
-  void average_volumetric_strain();
-  // Linear index of the cell holding x (last axis slowest), clamped to the grid.
+  void accumulate_cell_dilation();
+  // Index of the cell holding x, clamped to the grid; the slab axis varies slowest, so each scatter
+  // slab is a contiguous range of cells (and, after sorting, of particles).
   int cell_index(const Vec<Dim>& x) const;
   void check_particles() const;
   void sort_particles();
@@ -134,6 +139,10 @@ class Model {
   bool material_lists_valid_ = false;
   mutable std::vector<int> index_of_id_;  // rebuilt on demand after a sort
   ScatterSchedule schedule_;
+  int slab_axis_ = Dim - 1;  // the axis with the most cells: the most slabs to share among threads
+
+  std::vector<std::pair<const char*, double>> stage_times_;
+  void lap(const char* stage, double& since);
 
   double time_ = 0.0;
   double dt_ = 0.0;

@@ -1,8 +1,10 @@
 // Race-free, deterministic particle-to-grid scatter. The grid is cut into slabs of whole cells
-// along its last axis; slabs of one colour (even or odd) never touch the same node, so each colour
+// along one axis (the model picks the one with the most cells); slabs of one colour (even or odd) never touch the same node, so each colour
 // runs in parallel, and every node sums its contributions in the same order whatever the number
 // of threads: results are bit-identical for any thread count.
 #pragma once
+
+#include <omp.h>
 
 #include <vector>
 
@@ -13,21 +15,42 @@ class ScatterSchedule {
   // 4 cells: a uGIMP particle in cell c touches nodes c-1 .. c+2, so slabs 2 apart need >= 3 cells.
   static constexpr int kSlabCells = 4;
 
-  // `cell_of(p)` gives the particle's cell index along the last axis, already clamped to the grid.
+  // `cell_of(p)` gives the particle's cell index along the slab axis, already clamped to the grid.
+  // A stable counting sort by slab: particles of a slab in increasing index. Threads count and place
+  // contiguous chunks, which yields that same order whatever their number.
   template <class CellOf>
-  void build(int particle_count, int cells_last_axis, CellOf&& cell_of) {
-    const int slabs = (cells_last_axis + kSlabCells - 1) / kSlabCells;
+  void build(int particle_count, int cells_along_axis, CellOf&& cell_of) {
+    const int slabs = (cells_along_axis + kSlabCells - 1) / kSlabCells;
     slab_of_.resize(particle_count);
-    begin_.assign(slabs + 1, 0);
-    for (int p = 0; p < particle_count; ++p) {
-      const int s = cell_of(p) / kSlabCells;
-      slab_of_[p] = s;
-      ++begin_[s + 1];
-    }
-    for (int s = 0; s < slabs; ++s) begin_[s + 1] += begin_[s];
     order_.resize(particle_count);
-    std::vector<int> next(begin_.begin(), begin_.end() - 1);
-    for (int p = 0; p < particle_count; ++p) order_[next[slab_of_[p]]++] = p;
+    begin_.assign(slabs + 1, 0);
+#pragma omp parallel
+    {
+      const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+#pragma omp single
+      counts_.assign(static_cast<std::size_t>(threads) * slabs, 0);
+      const int lo = static_cast<int>(static_cast<long>(particle_count) * t / threads);
+      const int hi = static_cast<int>(static_cast<long>(particle_count) * (t + 1) / threads);
+      int* count = counts_.data() + static_cast<std::size_t>(t) * slabs;
+      for (int p = lo; p < hi; ++p) ++count[slab_of_[p] = cell_of(p) / kSlabCells];
+#pragma omp barrier
+#pragma omp single
+      {
+        // Slab-major, thread-minor prefix sums: thread t's particles of slab s follow thread t-1's.
+        int running = 0;
+        for (int sl = 0; sl < slabs; ++sl) {
+          begin_[sl] = running;
+          for (int th = 0; th < threads; ++th) {
+            int& c = counts_[static_cast<std::size_t>(th) * slabs + sl];
+            const int n = c;
+            c = running;
+            running += n;
+          }
+        }
+        begin_[slabs] = running;
+      }
+      for (int p = lo; p < hi; ++p) order_[count[slab_of_[p]]++] = p;
+    }
   }
 
   // Calls f(p) for every particle; slabs in parallel. For work that touches only the particle's own
@@ -55,6 +78,7 @@ class ScatterSchedule {
   std::vector<int> slab_of_;
   std::vector<int> begin_;
   std::vector<int> order_;
+  std::vector<int> counts_;  // per thread and slab
 };
 
 }  // namespace seismpm

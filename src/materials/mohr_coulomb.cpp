@@ -70,8 +70,56 @@ void validate(const MohrCoulombParameters& p) {
   }
 }
 
+// Active sets, from the simplest: the first whose multipliers are >= 0 and whose result is admissible
+// and keeps s1 >= s2 >= s3 is the return (Koiter's rule at the corners).
+struct Candidate {
+  int n;
+  int set[3];
+  MohrCoulomb::Return kind;
+};
+constexpr Candidate kCandidates[8] = {
+    {1, {0}, MohrCoulomb::Return::Face},           {1, {3}, MohrCoulomb::Return::Tension},
+    {2, {0, 1}, MohrCoulomb::Return::CompressionEdge}, {2, {0, 2}, MohrCoulomb::Return::ExtensionEdge},
+    {2, {3, 4}, MohrCoulomb::Return::TensionEdge}, {2, {0, 3}, MohrCoulomb::Return::Mixed},
+    {3, {0, 3, 4}, MohrCoulomb::Return::Mixed},    {3, {0, 2, 3}, MohrCoulomb::Return::Mixed},
+};
+
 MohrCoulomb::MohrCoulomb(const MohrCoulombParameters& p) : Material(p.density), p_(p), elastic_{p.young, p.poisson} {
   validate(p_);
+  fixed_ = tables(0.0);
+}
+
+MohrCoulomb::ReturnTables MohrCoulomb::tables(double plastic) const {
+  const Strength st = strength(p_, plastic);
+  const double k = st.k(), kpsi = (1.0 + st.sin_psi) / (1.0 - st.sin_psi), sc = st.sigma_c(), T = p_.tension;
+  // Surfaces for ordered principal stresses: 0 the face (1,3); with it, 1 makes the compression edge
+  // s1 = s2 and 2 the extension edge s2 = s3; 3-5 the tension planes s_i <= T.
+  const Surface s[6] = {
+      {{k, 0, -1}, {kpsi, 0, -1}, sc}, {{0, k, -1}, {0, kpsi, -1}, sc}, {{k, -1, 0}, {kpsi, -1, 0}, sc},
+      {{1, 0, 0}, {1, 0, 0}, T},       {{0, 1, 0}, {0, 1, 0}, T},       {{0, 0, 1}, {0, 0, 1}, T},
+  };
+  Eigen::Matrix3d D = Eigen::Matrix3d::Constant(elastic_.lambda());
+  D.diagonal().array() += 2.0 * elastic_.shear();
+  ReturnTables t;
+  for (int j = 0; j < 6; ++j) {
+    t.a[j] = s[j].a;
+    t.Db[j] = D * s[j].b;
+    t.r[j] = s[j].r;
+  }
+  for (int c = 0; c < 8; ++c) {
+    const Candidate& cand = kCandidates[c];
+    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();  // identity outside the active block
+    for (int i = 0; i < cand.n; ++i)
+      for (int j = 0; j < cand.n; ++j) A(i, j) = t.a[cand.set[i]].dot(t.Db[cand.set[j]]);
+    double size = 0.0;  // of the active block only
+    for (int i = 0; i < cand.n; ++i)
+      for (int j = 0; j < cand.n; ++j) size = std::max(size, std::abs(A(i, j)));
+    t.usable[c] = std::abs(A.determinant()) > 1e-14 * std::pow(size, cand.n);
+    t.inverse[c] = t.usable[c] ? Eigen::Matrix3d(A.inverse()) : Eigen::Matrix3d::Zero();
+  }
+  t.apex = st.sin_phi > 0.0 ? st.c * st.cos_phi / st.sin_phi : std::numeric_limits<double>::infinity();
+  t.sigma_c = sc;
+  return t;
 }
 
 double MohrCoulomb::yield_function(const Sym& stress, double plastic) const {
@@ -83,89 +131,48 @@ double MohrCoulomb::yield_function(const Sym& stress, double plastic) const {
 MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, double plastic) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
   const Sym trial = elastic_trial(stress, de, lambda, two_g);
-  const Strength st = strength(p_, plastic);
-  const double k = st.k(), kpsi = (1.0 + st.sin_psi) / (1.0 - st.sin_psi), sc = st.sigma_c();
-  const double T = p_.tension;
-
-  // Surfaces for ordered principal stresses: the MC face (1,3), the edges' second planes (2,3) and
-  // (1,2), and the tension planes s_i <= T.
-  const Surface s[6] = {
-      {{k, 0, -1}, {kpsi, 0, -1}, sc},  // 0: face
-      {{0, k, -1}, {0, kpsi, -1}, sc},  // 1: with 0, the compression edge s1 = s2
-      {{k, -1, 0}, {kpsi, -1, 0}, sc},  // 2: with 0, the extension edge s2 = s3
-      {{1, 0, 0}, {1, 0, 0}, T},        // 3: tension s1
-      {{0, 1, 0}, {0, 1, 0}, T},        // 4: tension s2
-      {{0, 0, 1}, {0, 0, 1}, T},        // 5: tension s3
-  };
+  const ReturnTables& t = p_.softening ? tables(plastic) : fixed_;
   const Eigen::Vector3d sb = principal_values(trial);
-  const double scale = std::max({sb.cwiseAbs().maxCoeff(), sc, T, 1e-300});
+  const double scale = std::max({sb.cwiseAbs().maxCoeff(), t.sigma_c, p_.tension, 1e-300});
   const double tol = 1e-10 * scale;
-  auto violated = [&](const Eigen::Vector3d& v, double t) {
-    for (const auto& f : s)
-      if (f.a.dot(v) - f.r > t) return true;
+  auto violated = [&](const Eigen::Vector3d& v, double margin) {
+    for (int j = 0; j < 6; ++j)
+      if (t.a[j].dot(v) - t.r[j] > margin) return true;
     return false;
   };
   if (!violated(sb, 0.0)) return {trial, Sym::Zero(), 0.0, Return::Elastic};
 
   const Principal pb = principal_stress(trial);
-  Eigen::Matrix3d D = Eigen::Matrix3d::Constant(lambda);
-  D.diagonal().array() += two_g;
-
-  // Active sets from the simplest: the first whose multipliers are >= 0 and whose result is
-  // admissible and keeps s1 >= s2 >= s3 is the return (Koiter's rule for the corners).
-  struct Candidate {
-    int n;
-    int set[3];
-    Return kind;
-  };
-  static constexpr Candidate candidates[] = {
-      {1, {0}, Return::Face},           {1, {3}, Return::Tension},
-      {2, {0, 1}, Return::CompressionEdge}, {2, {0, 2}, Return::ExtensionEdge},
-      {2, {3, 4}, Return::TensionEdge}, {2, {0, 3}, Return::Mixed},
-      {3, {0, 3, 4}, Return::Mixed},    {3, {0, 2, 3}, Return::Mixed},
-  };
   Eigen::Vector3d result = sb;
   Return kind = Return::Apex;
   bool found = false;
-  for (const auto& c : candidates) {
-    Eigen::Matrix3d A = Eigen::Matrix3d::Identity();
+  for (int c = 0; c < 8 && !found; ++c) {
+    if (!t.usable[c]) continue;
+    const Candidate& cand = kCandidates[c];
     Eigen::Vector3d f = Eigen::Vector3d::Zero();
-    Eigen::Vector3d Db[3];
-    for (int j = 0; j < c.n; ++j) Db[j] = D * s[c.set[j]].b;
-    for (int i = 0; i < c.n; ++i) {
-      f[i] = s[c.set[i]].a.dot(sb) - s[c.set[i]].r;
-      for (int j = 0; j < c.n; ++j) A(i, j) = s[c.set[i]].a.dot(Db[j]);
-    }
-    const double det = A.topLeftCorner(c.n, c.n).determinant();
-    if (!(std::abs(det) > 1e-14 * std::pow(A.topLeftCorner(c.n, c.n).cwiseAbs().maxCoeff(), c.n))) continue;
-    Eigen::Vector3d dl = Eigen::Vector3d::Zero();
-    if (c.n == 1)
-      dl[0] = f[0] / A(0, 0);
-    else if (c.n == 2)
-      dl.head<2>() = A.topLeftCorner<2, 2>().inverse() * f.head<2>();
-    else
-      dl = A.inverse() * f;
-    if ((dl.head(c.n).array() < -1e-12).any()) continue;
+    for (int i = 0; i < cand.n; ++i) f[i] = t.a[cand.set[i]].dot(sb) - t.r[cand.set[i]];
+    const Eigen::Vector3d dl = t.inverse[c] * f;
+    if ((dl.head(cand.n).array() < -1e-12).any()) continue;
     Eigen::Vector3d v = sb;
-    for (int j = 0; j < c.n; ++j) v -= dl[j] * Db[j];
+    for (int j = 0; j < cand.n; ++j) v -= dl[j] * t.Db[cand.set[j]];
     if (v[0] < v[1] - tol || v[1] < v[2] - tol || violated(v, tol)) continue;
     result = v;
-    kind = c.kind;
+    kind = cand.kind;
     found = true;
-    break;
   }
   if (!found) {
     // The apex: of the Mohr-Coulomb cone (c cot phi), or of the tension cut-off when it is lower.
-    const double apex = st.sin_phi > 0.0 ? st.c * st.cos_phi / st.sin_phi : std::numeric_limits<double>::infinity();
-    const double a = std::min(apex, T);
+    const double a = std::min(t.apex, p_.tension);
     result = Eigen::Vector3d::Constant(a);
-    kind = a < apex ? Return::TensionApex : Return::Apex;
+    kind = a < t.apex ? Return::TensionApex : Return::Apex;
   }
   Result out;
   out.stress = from_principal(result, pb.direction);
   out.kind = kind;
-  // Plastic strain: the part of the trial's elastic strain that the return removed, D^-1 (sb - s).
-  const Eigen::Vector3d dep = D.ldlt().solve(sb - result);
+  // Plastic strain: the elastic strain the return removed, D^-1 (sb - s), with
+  // D^-1 = (I - lambda / (3 lambda + 2G) 1 1^T) / 2G.
+  const Eigen::Vector3d ds = sb - result;
+  const Eigen::Vector3d dep = (ds.array() - lambda / (3.0 * lambda + two_g) * ds.sum()).matrix() / two_g;
   out.plastic_strain = from_principal(dep, pb.direction);
   out.shear_increment = equivalent_shear(dep);
   return out;

@@ -4,6 +4,8 @@
 // edge (triaxial compression s1 = s2, extension s2 = s3), to the apex, or to the tension planes.
 #pragma once
 
+#include <Eigen/Core>
+
 #include "core/material.hpp"
 #include "linear_elastic.hpp"
 
@@ -47,9 +49,24 @@ class MohrCoulomb : public Material {
   // Yield function (s1 - s3) + (s1 + s3) sin(phi) - 2 c cos(phi) at the given softening state.
   double yield_function(const Sym& stress, double plastic = 0.0) const;
 
+ public:
+  // Everything the return needs that depends only on the strength: the six surfaces in principal
+  // space (face, edge planes, tension planes), their plastic directions through D, and the inverted
+  // matrix of every active set. Built once without softening; per update with it.
+  struct ReturnTables {
+    Eigen::Vector3d a[6], Db[6];
+    double r[6];
+    Eigen::Matrix3d inverse[8];
+    bool usable[8];
+    double apex, sigma_c;
+  };
+
  private:
+  ReturnTables tables(double plastic) const;
+
   MohrCoulombParameters p_;
   ElasticConstants elastic_;
+  ReturnTables fixed_;  // without softening
 };
 
 }  // namespace seismpm

@@ -21,8 +21,13 @@ inline Principal principal_stress(const Sym& s) {
   if (s[4] == 0.0 && s[5] == 0.0) {
     const double m = 0.5 * (s[0] + s[1]), d = 0.5 * (s[0] - s[1]);
     const double r = std::sqrt(d * d + s[3] * s[3]);
-    const double theta = 0.5 * std::atan2(s[3], d);  // direction of the larger in-plane value
-    const double c = std::cos(theta), sn = std::sin(theta);
+    // Eigenvector of the larger in-plane value m + r, from the better-conditioned row.
+    double c = 1.0, sn = 0.0;
+    if (r > 0.0) {
+      const double ex = d >= 0.0 ? d + r : s[3], ey = d >= 0.0 ? s[3] : r - d;
+      const double inv = 1.0 / std::sqrt(ex * ex + ey * ey);
+      c = ex * inv, sn = ey * inv;
+    }
     double v[3] = {m + r, m - r, s[2]};
     Eigen::Vector3d dir[3] = {{c, sn, 0.0}, {-sn, c, 0.0}, {0.0, 0.0, 1.0}};
     // Sort three values descending, carrying directions along.
