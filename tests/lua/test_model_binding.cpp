@@ -113,6 +113,24 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.5 }", "key 'poisson' must be in [0, 0.5)"},
       {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = -0.1 }", "key 'poisson' must be in [0, 0.5)"},
       {"mpm.material.linear_elastic{ density = -1, young = 1e6, poisson = 0.3 }", "key 'density' must be > 0"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 90 }",
+       "key 'friction' must be in [0, 90) (degrees)"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, dilation = 30 }",
+       "key 'dilation' must be in [0, 23]"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, cohesion = -1 }",
+       "key 'cohesion' must be >= 0 (Pa)"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, cohesion = 780, "
+       "tension = 5000 }", "key 'tension' must be in [0, c cot(phi)"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 0 }",
+       "'cohesion' and 'friction' cannot both be zero"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { friction = 30, strain = 0.1 } }",
+       "key 'softening.friction' must be in [0, 23]"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { friction = 10 } }",
+       "missing key 'strain'"},
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { frction = 10 } }",
+       "unknown key 'frction'"},
+      {"mpm.material.drucker_prager{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, fit = 'middle' }",
+       "key 'fit' must be one of plane_strain|outer|inner"},
       {"mpm.shape.polygon{ {0, 0}, {1, 0} }", "polygon needs at least 3 points"},
       {"mpm.shape.polygon{ {0, 0}, {1, 1}, {1, 0}, {0, 1} }", "self-intersecting"},
       {"mpm.shape.polygon{ {0, 0}, {1, 'a'}, {1, 0} }", "point 2 must be a point {x, y} of numbers"},
@@ -145,6 +163,28 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
     const std::string error = f.error_of(c.code);
     CHECK_THAT(error, Contains(c.expected) && Contains("test:1:"));
   }
+}
+
+TEST_CASE("soil models from Lua: a dry sand column spreads and stays finite", "[lua][materials]") {
+  LuaFixture f;
+  const std::string error = f.error_of(R"(
+    local m = mpm.model{ domain = {{0, 0}, {0.5, 0.12}}, cell = 0.005 }
+    local sand = mpm.material.mohr_coulomb{ density = 2650, young = 0.84e6, poisson = 0.3, friction = 19.8 }
+    assert(sand:kind() == "mohr_coulomb" and tostring(sand):find("phi 19.8"))
+    local col = m:body{ name = "sand", material = sand, shape = mpm.shape.rectangle{ 0, 0, 0.2, 0.1 } }
+    m:fix{ side = "left", dof = "x" }
+    m:fix{ side = "bottom", dof = "xy" }
+    m:run{ duration = 0.3 }
+    local xs, ys, yield = col:field("x"), col:field("y"), col:field("yield")
+    local front, top, yielding = 0, 0, 0
+    for i = 1, #xs do front = math.max(front, xs[i]); top = math.max(top, ys[i]); yielding = yielding + yield[i] end
+    assert(front > 0.25, "the column did not spread: front at " .. front)
+    assert(top < 0.1, "the column did not slump: top at " .. top)
+    assert(yielding > 0, "no particle yielded")
+    local dp = mpm.material.drucker_prager{ density = 2650, young = 0.84e6, poisson = 0.3, friction = 19.8, fit = "outer" }
+    assert(dp:kind() == "drucker_prager")
+  )");
+  CHECK(error == "");
 }
 
 TEST_CASE("csv histories name the file and the line of bad data", "[lua][errors]") {
