@@ -23,6 +23,32 @@ std::string methods_of(const std::string& type) {
   return os.str();
 }
 
+// "mpm.<table>.<key>" where the value at `index` sits in a table of mpm, or "".
+std::string library_name(lua_State* L, int index) {
+  index = lua_absindex(L, index);
+  std::string found;
+  lua_getglobal(L, "mpm");
+  if (!lua_istable(L, -1)) {
+    lua_pop(L, 1);
+    return found;
+  }
+  lua_pushnil(L);
+  while (found.empty() && lua_next(L, -2) != 0) {
+    if (lua_type(L, -2) == LUA_TSTRING && lua_istable(L, -1)) {
+      const std::string table = lua_tostring(L, -2);
+      lua_pushnil(L);
+      while (lua_next(L, -2) != 0) {
+        if (found.empty() && lua_type(L, -2) == LUA_TSTRING && lua_rawequal(L, -1, index))
+          found = "mpm." + table + "." + lua_tostring(L, -2);
+        lua_pop(L, 1);
+      }
+    }
+    lua_pop(L, 1);
+  }
+  lua_pop(L, found.empty() ? 1 : 2);  // mpm, and the outer key when the search stopped early
+  return found;
+}
+
 int help(lua_State* L) {
   std::string text;
   if (lua_isnoneornil(L, 1)) {
@@ -46,12 +72,10 @@ int help(lua_State* L) {
     lua_getfield(L, LUA_REGISTRYINDEX, "seismpm.names");
     lua_pushvalue(L, 1);
     lua_rawget(L, -2);
-    const char* name = lua_tostring(L, -1);
-    const ApiDoc* d = name ? find_doc(name) : nullptr;
-    if (!d) {
-      // Lua-library functions are documented by name in mpm.geometry.
-      throw Error("no help for this " + type_name(L, 1) + "; help() lists everything");
-    }
+    std::string name = lua_tostring(L, -1) ? lua_tostring(L, -1) : "";
+    if (name.empty()) name = library_name(L, 1);  // a function of the Lua library (mpm.geometry.*)
+    const ApiDoc* d = name.empty() ? nullptr : find_doc(name);
+    if (!d) throw Error("no help for this " + type_name(L, 1) + "; help() lists everything");
     text = doc_text(*d);
   }
   std::fputs(text.c_str(), stdout);

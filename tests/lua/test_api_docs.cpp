@@ -23,3 +23,16 @@ TEST_CASE("every registered API function is documented", "[lua][docs]") {
   }
   CHECK(count >= 30);
 }
+
+TEST_CASE("help() knows every documented name, function and object", "[lua][docs]") {
+  seismpm::test::LuaFixture f;
+  std::string chunk = "help()\n";
+  for (const auto& d : seismpm::lua::api_docs()) chunk += std::string("help('") + d.name + "')\n";
+  chunk += R"(
+    help(mpm.model); help(mpm.geometry.slope); help(mpm.material.mohr_coulomb)
+    local m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
+    help(m); help(m.run); help(mpm.history.table{ {0, 0} })
+    assert(not pcall(help, "nonsense"))
+  )";
+  CHECK(f.error_of(chunk) == "");
+}
