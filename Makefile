@@ -7,9 +7,10 @@ BUILD_TYPE ?= Release
 JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
-# Debian 12 packages the build needs (compiler, CMake, Eigen, Catch2, Lua 5.4, readline, CLI11;
-# OpenMP comes with g++).
-PACKAGES = g++ make cmake pkg-config libeigen3-dev catch2 liblua5.4-dev libreadline-dev libcli11-dev
+# Debian 12 packages the build needs (compiler, CMake, Eigen, Catch2, Lua 5.4, readline, CLI11, VTK 9.1;
+# OpenMP comes with g++) and gnuplot for the plots.
+PACKAGES = g++ make cmake pkg-config libeigen3-dev catch2 liblua5.4-dev libreadline-dev libcli11-dev \
+           libvtk9-dev gnuplot-nox
 
 .PHONY: all deps configure build run test bench clean
 

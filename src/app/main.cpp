@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "console.hpp"
+#include "io/probe_plot.hpp"
 #include "io/progress.hpp"
 #include "lua/api_docs.hpp"
 #include "lua/runtime.hpp"
@@ -40,7 +41,8 @@ int main(int argc, char** argv) {
                "  seismpm                   interactive console\n"
                "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words)\n"
                "  seismpm -i FILE.lua       run, then stay in the console\n"
-               "  seismpm -e 'lua code'     run a chunk",
+               "  seismpm -e 'lua code'     run a chunk\n"
+               "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy)",
                "seismpm"};
   app.prefix_command();  // everything after FILE.lua belongs to the script
   bool interactive = false, quiet = false, version = false, api_doc = false;
@@ -90,6 +92,23 @@ int main(int argc, char** argv) {
   if (!rest.empty()) {
     script = rest.front();
     script_args.assign(rest.begin() + 1, rest.end());
+  }
+
+  // seismpm plot DIR [quantities...]: plots of a finished run's probes.
+  if (script == "plot" && !std::filesystem::is_regular_file(script)) {
+    if (script_args.empty()) {
+      std::fprintf(stderr, "seismpm plot: give the output directory, e.g. seismpm plot out/shaking_table\n");
+      return 2;
+    }
+    std::vector<std::string> quantities(script_args.begin() + 1, script_args.end());
+    if (quantities.empty()) quantities = {"ux", "uy"};
+    try {
+      for (const auto& png : seismpm::plot_probes(script_args[0], quantities)) std::printf("wrote %s\n", png.c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "seismpm plot: %s\n", e.what());
+      return 1;
+    }
+    return 0;
   }
 
   seismpm::lua::Runtime runtime(session, library_dirs(argv[0]));

@@ -9,8 +9,10 @@
 namespace seismpm {
 
 template <int Dim>
-Grid<Dim>::Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell) : origin_(lower), h_(cell) {
+Grid<Dim>::Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell, int ghost)
+    : origin_(lower.array() - ghost * cell), h_(cell), ghost_(ghost) {
   if (!(cell > 0.0) || !std::isfinite(cell)) throw InputError("grid: cell size must be > 0");
+  if (ghost < 0) throw InputError("grid: ghost layers must be >= 0");
   long total = 1;
   for (int d = 0; d < Dim; ++d) {
     const double extent = upper[d] - lower[d];
@@ -19,7 +21,7 @@ Grid<Dim>::Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell) : ori
     // Round up to whole cells, forgiving round-off in extent / h.
     const double n = std::ceil(extent / cell - 1e-9);
     if (n > 1e7) throw InputError("grid: too many cells along axis " + std::to_string(d));
-    cells_[d] = std::max(1, static_cast<int>(n));
+    cells_[d] = std::max(1, static_cast<int>(n)) + 2 * ghost;
     stride_[d] = static_cast<int>(total);
     total *= cells_[d] + 1;
     if (total > 100'000'000L) throw InputError("grid: over 100 million nodes; use a larger cell");
@@ -80,9 +82,10 @@ void Grid<Dim>::fix(Side side, unsigned dof_mask) {
   const int axis = static_cast<int>(side) / 2;
   if (axis >= Dim) throw InputError("grid: side does not exist in " + std::to_string(Dim) + "D");
   if (dof_mask == 0 || dof_mask >= (1u << Dim)) throw InputError("grid: fixity names a missing direction");
-  const int at = static_cast<int>(side) % 2 == 0 ? 0 : cells_[axis];
+  const bool low = static_cast<int>(side) % 2 == 0;
   for (int node = 0; node < node_count(); ++node) {
-    if (node_coords(node)[axis] != at) continue;
+    const int c = node_coords(node)[axis];
+    if (low ? c > ghost_ : c < cells_[axis] - ghost_) continue;
     if (fixity_[node] == 0) fixed_nodes_.push_back(node);
     fixity_[node] |= static_cast<unsigned char>(dof_mask);
   }

@@ -18,11 +18,18 @@ enum DofMask : unsigned { FixX = 1u, FixY = 2u, FixZ = 4u };
 template <int Dim>
 class Grid {
  public:
-  // Covers [lower, upper] with cells of size `cell`; the upper edge is rounded up to whole cells.
-  Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell);
+  // Covers the domain [lower, upper] with cells of size `cell` (the upper edge rounded up to whole
+  // cells) plus `ghost` layers of cells beyond it on every side, so that a particle anywhere in the
+  // domain has its whole support on the grid.
+  Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell, int ghost = 0);
 
-  const Vec<Dim>& origin() const { return origin_; }
-  Vec<Dim> upper() const;
+  const Vec<Dim>& origin() const { return origin_; }  // the first node, ghost layers included
+  Vec<Dim> upper() const;                              // the last node
+  // The user's domain: the grid without its ghost layers.
+  Vec<Dim> domain_lower() const { return origin_.array() + ghost_ * h_; }
+  Vec<Dim> domain_upper() const { return upper().array() - ghost_ * h_; }
+  int ghost() const { return ghost_; }
+  int domain_cells(int axis) const { return cells_[axis] - 2 * ghost_; }
   double cell() const { return h_; }
   int cells(int axis) const { return cells_[axis]; }
   int nodes(int axis) const { return cells_[axis] + 1; }
@@ -36,7 +43,8 @@ class Grid {
   // Zeroes mass, momentum and force before a transfer.
   void reset();
 
-  // Holds the given degrees of freedom of every node on a grid edge at zero.
+  // Holds the given degrees of freedom at zero on every node of a domain edge and of the ghost
+  // layers beyond it.
   void fix(Side side, unsigned dof_mask);
   // Nodes with at least one fixed degree of freedom and their masks.
   const std::vector<int>& fixed_nodes() const { return fixed_nodes_; }
@@ -54,6 +62,7 @@ class Grid {
  private:
   Vec<Dim> origin_;
   double h_;
+  int ghost_ = 0;
   std::array<int, Dim> cells_{};
   std::array<int, Dim> stride_{};
   std::vector<unsigned char> fixity_;

@@ -38,9 +38,9 @@ std::string format_point(const Vec<Dim>& x) {
 
 template <int Dim>
 Model<Dim>::Model(const ModelSettings<Dim>& settings)
-    : settings_(settings), grid_(settings.lower, settings.upper, settings.cell) {
+    : settings_(settings), grid_(settings.lower, settings.upper, settings.cell, 1) {
   for (int d = 0; d < Dim; ++d)
-    if (grid_.cells(d) < 2) throw InputError("model: the domain must span at least 2 cells along every axis");
+    if (grid_.domain_cells(d) < 2) throw InputError("model: the domain must span at least 2 cells along every axis");
   for (int d = Dim - 1; d >= 0; --d)
     if (grid_.cells(d) > grid_.cells(slab_axis_)) slab_axis_ = d;
   if (!(settings.cfl > 0.0 && settings.cfl <= 1.0)) throw InputError("model: cfl must be in (0, 1]");
@@ -84,11 +84,12 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
   const double mass = materials_[material]->density() * volume;
   const double half_width = 0.5 / ppc;  // cell units
 
-  // Cells overlapping the box, clamped to the grid.
+  // Cells overlapping the box, clamped to the domain (not the ghost layers).
+  const int g = grid_.ghost();
   std::array<int, Dim> c0{}, c1{};
   for (int d = 0; d < Dim; ++d) {
-    c0[d] = std::max(0, static_cast<int>(std::floor((lo[d] - grid_.origin()[d]) / h)));
-    c1[d] = std::min(grid_.cells(d) - 1, static_cast<int>(std::floor((hi[d] - grid_.origin()[d]) / h)));
+    c0[d] = std::max(g, static_cast<int>(std::floor((lo[d] - grid_.origin()[d]) / h)));
+    c1[d] = std::min(grid_.cells(d) - 1 - g, static_cast<int>(std::floor((hi[d] - grid_.origin()[d]) / h)));
     if (c1[d] < c0[d]) return 0;
   }
   std::size_t added = 0;
@@ -424,8 +425,8 @@ void Model<Dim>::fail(std::size_t p, const std::string& what) const {
   os << "step " << steps_ << " (t = " << time_ << " s): particle " << particles_.id[p] << " of body '"
      << bodies_[particles_.body[p]].name << "' at " << format_point<Dim>(particles_.x[p]) << " " << what;
   if (what.find("grid") != std::string::npos)
-    os << " (the grid spans " << format_point<Dim>(grid_.origin()) << " to " << format_point<Dim>(grid_.upper())
-       << ")";
+    os << " (the domain spans " << format_point<Dim>(grid_.domain_lower()) << " to "
+       << format_point<Dim>(grid_.domain_upper()) << ")";
   throw SimulationError(os.str());
 }
 
@@ -446,10 +447,10 @@ void Model<Dim>::check_particles() const {
        << P.volume[bad] << ")";
     fail(bad, os.str());
   }
-  // The next step needs every particle's centre inside the grid.
+  // The next step needs every particle's centre inside the domain.
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (int p = 0; p < n; ++p)
-    if (!inside_grid(grid_, P.x[p])) bad = std::min(bad, p);
+    if (!inside_domain(grid_, P.x[p])) bad = std::min(bad, p);
   if (bad < n) fail(bad, "left the grid");
 }
 

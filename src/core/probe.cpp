@@ -1,5 +1,8 @@
 #include "probe.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include "error.hpp"
 #include "model.hpp"
 
@@ -23,9 +26,16 @@ void Probe<Dim>::sample(const Model<Dim>& model) {
 }
 
 template <int Dim>
+double Probe<Dim>::next_sample_time() const {
+  if (every_ == 0.0) return std::numeric_limits<double>::infinity();
+  const double last = times_.back();
+  return (std::floor(last / every_ + 1e-6) + 1.0) * every_;
+}
+
+template <int Dim>
 void Probe<Dim>::after_step(Model<Dim>& model) {
-  // Sample when the step crossed a multiple of `every` (or every step when every = 0).
-  if (every_ == 0.0 || model.time() >= times_.back() + every_ * (1.0 - 1e-9)) sample(model);
+  // Sample when the step reached the next multiple of `every` (or every step when every = 0).
+  if (every_ == 0.0 || model.time() >= next_sample_time() - 1e-9 * every_) sample(model);
 }
 
 template <int Dim>

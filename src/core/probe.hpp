@@ -20,6 +20,9 @@ class Probe : public Fix<Dim> {
 
   int particle_id() const { return id_; }
   double every() const { return every_; }
+  void set_every(double every) { every_ = every; }
+  // The next sampling time, on the grid k * every (infinity when sampling every step).
+  double next_sample_time() const;
   // Records now, whatever the interval (start and end of runs).
   void sample(const Model<Dim>& model);
   const std::vector<double>& times() const { return times_; }

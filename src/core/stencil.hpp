@@ -17,20 +17,19 @@ struct Stencil {
   double dw[Dim][K];   // per-axis derivatives (1/m)
 };
 
-// True while the particle's centre lies in the grid (edges included).
+// True while the particle's centre lies in the grid's domain (edges included, ghost layers not).
 template <int Dim>
-bool inside_grid(const Grid<Dim>& grid, const Vec<Dim>& x) {
-  for (int d = 0; d < Dim; ++d) {
-    const double xi = (x[d] - grid.origin()[d]) / grid.cell();
-    if (!(xi >= 0.0 && xi <= grid.cells(d))) return false;
-  }
+bool inside_domain(const Grid<Dim>& grid, const Vec<Dim>& x) {
+  const Vec<Dim> lo = grid.domain_lower(), hi = grid.domain_upper();
+  for (int d = 0; d < Dim; ++d)
+    if (!(x[d] >= lo[d] && x[d] <= hi[d])) return false;
   return true;
 }
 
 // Per-axis first node and weights for a particle at x with uGIMP half-width l (cell units).
-// Returns false when the particle's centre is outside the grid. A uGIMP particle within l of a
-// grid edge reaches past it: the stencil is clipped to the grid there (the weight beyond is at most
-// l/4 and the edge nodes are where boundary conditions act), so bodies may rest on the grid edge.
+// Returns false when the particle's centre is outside the grid. A model's grid has a ghost layer,
+// so a particle in its domain always has its whole support; on a grid without one, a uGIMP stencil
+// reaching past the edge is clipped there (which breaks sum grad N = 0 for that particle).
 template <class Shape, int Dim>
 bool make_stencil(const Grid<Dim>& grid, const Vec<Dim>& x, double l, Stencil<Dim, Shape::K>& st) {
   const double inv_h = 1.0 / grid.cell();

@@ -77,6 +77,17 @@ const std::vector<ApiDoc>& api_docs() {
        "A control point: follows the particle of the body nearest to `at` and records all its fields every `every` "
        "seconds of simulated time (0: every step) and at the end of each run.",
        "local p1 = m:probe{ name = \"crest\", body = soil, at = {0.3, 0.5} }"},
+      {"model:output", "m:output{ dir, every = 0.1, fields, grid = false, probe_every }",
+       "Writes ParaView files into dir (m; --out DIR replaces it): particles_NNNNNN.vtu now, every `every` seconds "
+       "of simulated time and at the end of each run, listed with their times in particles.pvd (open that one in "
+       "ParaView); probes.csv with every field of every probe. fields = a list of names (default: all; components "
+       "such as ux select their vector); grid = true adds grid_NNNNNN.vtu with nodal mass, velocity and fixities; "
+       "probe_every (s) sets every probe's sampling interval.",
+       "m:output{ dir = \"out/slope\", every = 0.1, probe_every = 0.01 }"},
+      {"model:plot", "m:plot{ quantities = {\"ux\", \"uy\"} }",
+       "PNG time histories of the probes in the output directory with gnuplot (probe_<quantity>.png, one curve per "
+       "probe, axes with units); returns the file names. From the shell: seismpm plot DIR ux uy.",
+       "for _, png in ipairs(m:plot{ quantities = {\"ux\", \"uy\"} }) do print(png) end"},
       {"model:step", "m:step(n = 1)", "Takes n explicit steps.", "m:step(10)"},
       {"model:run", "m:run{ duration, damping }",
        "Runs for duration (s) more, with a progress display; damping = local damping coefficient in [0, 1) for this "

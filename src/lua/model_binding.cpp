@@ -1,10 +1,14 @@
 // mpm.model and the model's methods: body, fix, probe, step, run and inspection.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "binding.hpp"
 #include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/probe_plot.hpp"
 #include "objects.hpp"
+#include "core/particle_fields.hpp"
 #include "session.hpp"
 
 namespace seismpm::lua {
@@ -54,7 +58,7 @@ int model_new(lua_State* L) {
 int model_tostring(lua_State* L) {
   const auto& m = self(L).model;
   std::ostringstream os;
-  os << "model: " << m.grid().cells(0) << " x " << m.grid().cells(1) << " cells of " << m.grid().cell() << " m, "
+  os << "model: " << m.grid().domain_cells(0) << " x " << m.grid().domain_cells(1) << " cells of " << m.grid().cell() << " m, "
      << m.bodies().size() << " bodies, " << m.particles().size() << " particles, t = " << m.time() << " s";
   lua_pushstring(L, os.str().c_str());
   return 1;
@@ -77,7 +81,7 @@ int model_body(lua_State* L) {
 
   const auto& g = h.model.grid();
   const double tol = 1e-9 * g.cell();
-  const Vec<2> lo = g.origin(), hi = g.upper();
+  const Vec<2> lo = g.domain_lower(), hi = g.domain_upper();
   if ((region->lower().array() < lo.array() - tol).any() || (region->upper().array() > hi.array() + tol).any())
     throw Error("key 'shape': " + region->describe() + " reaches outside the domain " + point_text(lo) + " to " +
                 point_text(hi));
@@ -146,16 +150,23 @@ void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps) {
         os << "interrupted (Ctrl-C) at t = " << m.time() << " s, step " << m.steps() << "; the model is intact";
         throw Error(os.str());
       }
-      m.step(end - m.time());
+      // Land exactly on the next output and probe times.
+      double until = end;
+      if (h.output) until = std::min(until, h.output->next_time());
+      for (const auto& p : h.probes) until = std::min(until, p->next_sample_time());
+      m.step(until - m.time());
       ++taken;
+      if (h.output && h.output->due(m.time())) h.output->write(m, h.probes, h.phase);
       progress.update(m.time(), m.steps(), m.dt());
     }
   } catch (const SimulationError&) {
+    // The files written so far stay as they are: valid, up to the last output time.
     progress.finish(m.time(), m.steps(), "failed");
-    for (auto& p : h.probes) p->sample(m);
     throw;
   }
   for (auto& p : h.probes) p->sample(m);
+  // The end of a run is always on file, so ParaView and probes.csv show the final state.
+  if (h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
   progress.finish(m.time(), m.steps(), "done");
 }
 
@@ -185,6 +196,69 @@ int model_run(lua_State* L) {
   }
   run_for(L, h, duration, std::numeric_limits<long>::max());
   return 0;
+}
+
+// m:output{ dir, every, fields, grid, probe_every }
+int model_output(lua_State* L) {
+  ModelHandle& h = self(L);
+  Args a(L, 2, {"dir", "every", "fields", "grid", "probe_every"});
+  OutputSettings s;
+  const std::string& forced = session(L).out_dir;
+  s.dir = forced.empty() ? a.string("dir") : (a.has("dir") ? (a.string("dir"), forced) : forced);
+  s.every = Args::positive("every", a.number("every", 0.1), "s");
+  s.grid = a.boolean("grid", false);
+  if (a.push("fields") != LUA_TNIL) {
+    if (!lua_istable(L, -1)) throw Error("key 'fields' must be a list of field names");
+    s.arrays.clear();
+    for (lua_Integer i = 1; i <= luaL_len(L, -1); ++i) {
+      lua_rawgeti(L, -1, i);
+      const char* name = lua_tostring(L, -1);
+      if (!name || lua_type(L, -1) != LUA_TSTRING) throw Error("key 'fields': entry " + std::to_string(i) + " must be a name");
+      const VtuArray array = parse_vtu_array(name);
+      if (std::find(s.arrays.begin(), s.arrays.end(), array) == s.arrays.end()) s.arrays.push_back(array);
+      lua_pop(L, 1);
+    }
+    if (s.arrays.empty()) throw Error("key 'fields' is empty");
+  }
+  lua_pop(L, 1);
+  if (auto pe = a.optional_number("probe_every")) {
+    Args::at_least("probe_every", *pe, 0.0, "s");
+    for (auto& p : h.probes) p->set_every(*pe);
+  }
+  h.output = std::make_unique<Output<2>>(s);
+  h.output->write(h.model, h.probes, h.phase);  // the state as it is now
+  return 0;
+}
+
+// m:plot{ quantities = {"ux", "uy"} } -> list of PNG files
+int model_plot(lua_State* L) {
+  ModelHandle& h = self(L);
+  std::vector<std::string> quantities = {"ux", "uy"};
+  if (!lua_isnoneornil(L, 2)) {
+    Args a(L, 2, {"quantities"});
+    if (a.push("quantities") != LUA_TNIL) {
+      if (!lua_istable(L, -1)) throw Error("key 'quantities' must be a list of field names such as {\"ux\", \"uy\"}");
+      quantities.clear();
+      for (lua_Integer i = 1; i <= luaL_len(L, -1); ++i) {
+        lua_rawgeti(L, -1, i);
+        const char* q = lua_tostring(L, -1);
+        if (!q || !parse_field(q, 2)) throw Error("key 'quantities': entry " + std::to_string(i) + " is not a field name (" + field_names(2) + ")");
+        quantities.emplace_back(q);
+        lua_pop(L, 1);
+      }
+    }
+    lua_pop(L, 1);
+  }
+  if (!h.output) throw Error("no output directory yet: call m:output{ dir = ... } first");
+  if (h.probes.empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
+  write_file_atomically(h.output->settings().dir + "/probes.csv", probes_csv_text(h.probes));
+  const auto files = plot_probes(h.output->settings().dir, quantities);
+  lua_createtable(L, static_cast<int>(files.size()), 0);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    lua_pushstring(L, files[i].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
 }
 
 int model_time(lua_State* L) {
@@ -238,6 +312,8 @@ void open_model(lua_State* L, int mpm) {
   set_function<model_probe>(L, -1, "probe", "model:probe");
   set_function<model_step>(L, -1, "step", "model:step");
   set_function<model_run>(L, -1, "run", "model:run");
+  set_function<model_output>(L, -1, "output", "model:output");
+  set_function<model_plot>(L, -1, "plot", "model:plot");
   set_function<model_time>(L, -1, "time", "model:time");
   set_function<model_steps>(L, -1, "steps", "model:steps");
   set_function<model_dt>(L, -1, "dt", "model:dt");

@@ -12,6 +12,7 @@
 #include "core/model.hpp"
 #include "core/probe.hpp"
 #include "core/region.hpp"
+#include "io/output.hpp"
 
 namespace seismpm::lua {
 
@@ -29,6 +30,7 @@ struct ModelHandle {
   std::vector<std::shared_ptr<Probe<2>>> probes;
   std::map<const Material*, int> material_index;
   std::shared_ptr<LocalDamping<2>> damping;
+  std::unique_ptr<Output<2>> output;
   std::string phase = "run";
 
   int material(const std::shared_ptr<const Material>& m) {

@@ -24,7 +24,7 @@ TEST_CASE("a particle leaving the grid stops the run and names it", "[core][fail
   CAPTURE(message);
   CHECK_THAT(message, Catch::Contains("left the grid") && Catch::Contains("step ") && Catch::Contains("t = ") &&
                           Catch::Contains("particle ") && Catch::Contains("body 'block'") &&
-                          Catch::Contains("the grid spans"));
+                          Catch::Contains("the domain spans"));
   CHECK(m->time() < 0.1);
   CHECK(m->particles().size() == count);
   // Stepping again refuses too: the run cannot go on quietly.

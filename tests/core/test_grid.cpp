@@ -18,6 +18,20 @@ TEST_CASE("grid covers the domain with whole cells", "[core][grid]") {
   CHECK(g3.stride(2) == 11 * 6);
 }
 
+TEST_CASE("a ghost layer surrounds the domain and edge fixities hold it too", "[core][grid]") {
+  Grid<2> g(Vec<2>::Zero(), Vec<2>(1.0, 1.0), 0.25, 1);
+  CHECK(g.cells(0) == 6);
+  CHECK(g.domain_cells(0) == 4);
+  CHECK(g.origin().isApprox(Vec<2>(-0.25, -0.25)));
+  CHECK(g.domain_lower().isApprox(Vec<2>(0.0, 0.0)));
+  CHECK(g.domain_upper().isApprox(Vec<2>(1.0, 1.0)));
+  g.fix(Side::Right, FixX);
+  CHECK(g.fixed_nodes().size() == 2 * 7);  // the edge x = 1 and the ghost layer x = 1.25
+  CHECK(g.fixity(5) == FixX);
+  CHECK(g.fixity(6) == FixX);
+  CHECK(g.fixity(4) == 0);
+}
+
 TEST_CASE("grid-edge fixities hold the chosen directions", "[core][grid]") {
   Grid<2> g(Vec<2>::Zero(), Vec<2>(1.0, 1.0), 0.25);
   g.fix(Side::Left, FixX);

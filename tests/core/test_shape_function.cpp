@@ -105,6 +105,6 @@ TEST_CASE("a stencil is refused outside the grid and clipped at its edge", "[cor
   CHECK(weight_sum(s) == Approx(1.0).epsilon(1e-14));
   CHECK_FALSE(make_stencil<LinearShape>(grid, Vec<2>(1.0 + 1e-9, 0.5), 0.0, s));
   CHECK_FALSE(make_stencil<GimpShape>(grid, Vec<2>(0.5, -1e-9), 0.25, g));
-  CHECK(inside_grid(grid, Vec<2>(0.0, 1.0)));
-  CHECK_FALSE(inside_grid(grid, Vec<2>(0.5, 1.0 + 1e-12)));
+  CHECK(inside_domain(grid, Vec<2>(0.0, 1.0)));
+  CHECK_FALSE(inside_domain(grid, Vec<2>(0.5, 1.0 + 1e-12)));
 }

@@ -1,0 +1,55 @@
+// A model's output directory: particles_NNNNNN.vtu every `every` seconds with particles.pvd listing
+// them by simulated time (rewritten whole after every file, so it is always valid), optional
+// grid_NNNNNN.vtu + grid.pvd, and probes.csv with every field of every probe.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/model.hpp"
+#include "core/probe.hpp"
+#include "vtu_writer.hpp"
+
+namespace seismpm {
+
+struct OutputSettings {
+  std::string dir;
+  double every = 0.1;                          // s of simulated time between files (> 0)
+  std::vector<VtuArray> arrays = all_vtu_arrays();
+  bool grid = false;                           // also write the active grid nodes
+};
+
+template <int Dim>
+class Output {
+ public:
+  // Creates the directory; throws OutputError naming it when that fails.
+  explicit Output(OutputSettings settings);
+  const OutputSettings& settings() const { return settings_; }
+  // True when the model's time has reached the next output time.
+  bool due(double time) const { return time >= next_ - 1e-9 * settings_.every; }
+  double next_time() const { return next_; }
+  // True when nothing was written at this time yet.
+  bool behind(double time) const { return files_.empty() || files_.back().first < time; }
+  // Writes the files for the model's current state. Throws OutputError; files written before stay valid.
+  void write(const Model<Dim>& model, const std::vector<std::shared_ptr<Probe<Dim>>>& probes, const std::string& phase);
+  int files_written() const { return static_cast<int>(files_.size()); }
+
+ private:
+  OutputSettings settings_;
+  double next_ = 0.0;
+  std::vector<std::pair<double, std::string>> files_;  // time, particle file name
+  std::vector<std::pair<double, std::string>> grid_files_;
+};
+
+// The PVD collection text for (time, file) pairs.
+std::string pvd_text(const std::vector<std::pair<double, std::string>>& files);
+// probes.csv: "time (s)" and "<probe>.<field>" columns; a row per sampled time.
+template <int Dim>
+std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
+
+extern template class Output<2>;
+extern template class Output<3>;
+
+}  // namespace seismpm

@@ -1,0 +1,47 @@
+// ParaView files (.vtu) of particles and grid nodes, written with VTK's XML writer: binary,
+// zlib-compressed, appended raw data. The only translation unit that includes VTK.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "core/particles.hpp"
+
+namespace seismpm {
+
+// Groups of particle fields as VTK arrays: vectors with 3 components, tensors with 6 (xx, yy, zz,
+// xy, yz, xz), the scalars under their own names.
+enum class VtuArray {
+  Id, Body, Material, Mass, Volume, Density, Displacement, Velocity, Stress, Strain,
+  Pressure, Q, ShearStrain, PlasticStrain, Yield
+};
+std::vector<VtuArray> all_vtu_arrays();
+// The array a field name belongs to: "ux" -> Displacement, "sxx" -> Stress, "pressure" -> Pressure;
+// group names ("displacement", "stress", ...) work too. Throws InputError listing the names.
+VtuArray parse_vtu_array(const std::string& name);
+
+struct VtuMeta {
+  double time = 0.0;
+  std::string phase;
+};
+
+// Writes the particles for which keep(p) is true to `path` atomically. Throws OutputError.
+template <int Dim, class Keep>
+void write_particles_vtu(const std::string& path, const Particles<Dim>& particles, const std::vector<VtuArray>& arrays,
+                         const VtuMeta& meta, Keep&& keep) {
+  std::vector<std::size_t> index;
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    if (keep(p)) index.push_back(p);
+  write_particles_vtu(path, particles, index, arrays, meta);
+}
+
+template <int Dim>
+void write_particles_vtu(const std::string& path, const Particles<Dim>& particles, const std::vector<std::size_t>& index,
+                         const std::vector<VtuArray>& arrays, const VtuMeta& meta);
+
+// Grid nodes that carry mass: nodal mass, velocity and fixity flags.
+template <int Dim>
+void write_grid_vtu(const std::string& path, const Grid<Dim>& grid, double mass_threshold, const VtuMeta& meta);
+
+}  // namespace seismpm

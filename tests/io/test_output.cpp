@@ -1,0 +1,191 @@
+// ParaView output, probe histories and plots, read back and checked against the particle state.
+#include <catch2/catch.hpp>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
+#include "io/output.hpp"
+#include "io/probe_plot.hpp"
+#include "lua/lua_fixture.hpp"
+
+namespace fs = std::filesystem;
+using namespace seismpm;
+
+namespace {
+
+std::string fresh_dir(const std::string& name) {
+  const std::string dir = (fs::temp_directory_path() / ("seismpm_test_" + name)).string();
+  fs::remove_all(dir);
+  return dir;
+}
+
+// (time, file) entries of a .pvd, and a check that it is well-formed.
+std::vector<std::pair<double, std::string>> read_pvd(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  REQUIRE(text.find("<VTKFile type=\"Collection\"") != std::string::npos);
+  REQUIRE(text.find("</VTKFile>") != std::string::npos);
+  std::vector<std::pair<double, std::string>> out;
+  const std::regex entry("<DataSet timestep=\"([^\"]+)\"[^>]*file=\"([^\"]+)\"/>");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it)
+    out.emplace_back(std::stod((*it)[1]), (*it)[2]);
+  return out;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const std::string& path) {
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  REQUIRE(reader->GetErrorCode() == 0);
+  return reader->GetOutput();
+}
+
+std::vector<std::string> lines_of(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  return lines;
+}
+
+}  // namespace
+
+TEST_CASE("ParaView files hold the particle state and the pvd lists them with their times", "[io][vtu]") {
+  const std::string dir = fresh_dir("vtu");
+  test::LuaFixture f;
+  const std::string error = f.error_of(R"(
+    m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
+    mat = mpm.material.linear_elastic{ density = 2000, young = 1e7, poisson = 0.3 }
+    b = m:body{ name = "block", material = mat, shape = mpm.shape.rectangle{ 0, 0, 1, 0.5 } }
+    m:fix{ side = "bottom" }
+    p = m:probe{ name = "top", body = b, at = {0.5, 0.5} }
+    m:output{ dir = ")" + dir + R"(", every = 0.05, grid = true, probe_every = 0.01 }
+    m:run{ duration = 0.2 }
+    uy = b:field("uy"); syy = b:field("syy"); ids = b:field("id")
+  )");
+  REQUIRE(error == "");
+  const auto files = read_pvd(dir + "/particles.pvd");
+  REQUIRE(files.size() == 5);  // t = 0, 0.05, 0.1, 0.15, 0.2
+  for (std::size_t k = 0; k < files.size(); ++k) {
+    CHECK(files[k].first == Approx(0.05 * k).margin(1e-9));
+    CHECK(fs::exists(dir + "/" + files[k].second));
+  }
+  CHECK(read_pvd(dir + "/grid.pvd").size() == 5);
+  // The last file against the particle state, array by array.
+  auto grid = read_vtu(dir + "/" + files.back().second);
+  lua_State* L = f.runtime.state();
+  const int n = 200;
+  REQUIRE(grid->GetNumberOfPoints() == n);
+  REQUIRE(grid->GetNumberOfCells() == n);
+  auto* pd = grid->GetPointData();
+  for (const char* name : {"id", "body", "material", "mass", "volume", "density", "displacement", "velocity", "stress",
+                           "strain", "pressure", "q", "shear_strain", "plastic_strain", "yield"})
+    CHECK(pd->GetArray(name) != nullptr);
+  CHECK(pd->GetArray("displacement")->GetNumberOfComponents() == 3);
+  CHECK(pd->GetArray("stress")->GetNumberOfComponents() == 6);
+  CHECK(grid->GetFieldData()->GetArray("TimeValue")->GetTuple1(0) == Approx(0.2));
+  double worst = 0.0;
+  for (int k = 0; k < n; ++k) {
+    // Files are in particle (storage) order; map back through the id array.
+    const int id = static_cast<int>(pd->GetArray("id")->GetTuple1(k));
+    for (const char* table : {"ids", "uy", "syy"}) lua_getglobal(L, table);
+    int index = 0;
+    for (int i = 1; i <= n; ++i) {
+      lua_rawgeti(L, -3, i);
+      if (static_cast<int>(lua_tonumber(L, -1)) == id) index = i;
+      lua_pop(L, 1);
+    }
+    REQUIRE(index > 0);
+    lua_rawgeti(L, -2, index);
+    const double uy = lua_tonumber(L, -1);
+    lua_rawgeti(L, -2, index);
+    const double syy = lua_tonumber(L, -1);
+    lua_pop(L, 5);
+    worst = std::max(worst, std::abs(pd->GetArray("displacement")->GetComponent(k, 1) - uy));
+    worst = std::max(worst, std::abs(pd->GetArray("stress")->GetComponent(k, 1) - syy) * 1e-6);
+  }
+  CHECK(worst == 0.0);  // binary doubles: exact
+  // probes.csv: a header with every field of the probe, a row per 0.01 s.
+  const auto csv = lines_of(dir + "/probes.csv");
+  REQUIRE(csv.size() == 1 + 21);
+  CHECK(csv[0].rfind("time (s),top.id,top.body,top.material,top.mass", 0) == 0);
+  CHECK(csv[0].find("top.uy") != std::string::npos);
+  CHECK(std::count(csv[0].begin(), csv[0].end(), ',') == 21);  // time + 21 fields in 2D
+  // No temporary files are left behind.
+  for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().extension() != ".tmp");
+}
+
+TEST_CASE("a run that fails between two writes leaves valid files", "[io][vtu]") {
+  const std::string dir = fresh_dir("failed");
+  test::LuaFixture f;
+  const std::string error = f.error_of(R"(
+    m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1, gravity = {0, 0} }
+    mat = mpm.material.linear_elastic{ density = 2000, young = 1e7, poisson = 0.3 }
+    b = m:body{ material = mat, shape = mpm.shape.rectangle{ 0.5, 0.4, 0.7, 0.6 } }
+    b:set_velocity{ 3.0, 0 }
+    m:output{ dir = ")" + dir + R"(", every = 0.02 }
+    m:run{ duration = 1 }
+  )");
+  CHECK_THAT(error, Catch::Contains("left the grid"));  // at t = 0.108 s
+  const auto files = read_pvd(dir + "/particles.pvd");
+  REQUIRE(files.size() == 6);                           // 0, 0.02, ... 0.1: all that was reached
+  CHECK(files.back().first == Approx(0.1));
+  for (const auto& [t, file] : files) CHECK(read_vtu(dir + "/" + file)->GetNumberOfPoints() == 16);
+}
+
+TEST_CASE("an unwritable output directory is an error naming the path", "[io][vtu]") {
+  test::LuaFixture f;
+  const std::string error = f.error_of(R"(
+    m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
+    m:output{ dir = "/proc/seismpm_cannot_write_here", every = 0.1 }
+  )");
+  CHECK_THAT(error, Catch::Contains("model:output: cannot create the output directory /proc/seismpm_cannot_write_here"));
+  CHECK_THROWS_AS(write_file_atomically("/proc/nope/file.txt", "x"), OutputError);
+  CHECK_THAT(f.error_of("mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }:output{ dir = '/tmp/x', fields = {'speed'} }"),
+             Catch::Contains("unknown output field 'speed'"));
+}
+
+TEST_CASE("probe plots are PNG images, one per quantity", "[io][plot]") {
+  const std::string dir = fresh_dir("plot");
+  test::LuaFixture f;
+  const std::string error = f.error_of(R"(
+    m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
+    mat = mpm.material.linear_elastic{ density = 2000, young = 1e6, poisson = 0.3 }
+    b = m:body{ material = mat, shape = mpm.shape.rectangle{ 0, 0, 1, 0.5 } }
+    m:fix{ side = "bottom" }
+    m:probe{ name = "crest", body = b, at = {0.5, 0.5} }
+    m:probe{ name = "toe", body = b, at = {0.9, 0.1} }
+    m:output{ dir = ")" + dir + R"(", every = 0.1 }
+    m:run{ duration = 0.3 }
+    pngs = m:plot{ quantities = {"ux", "uy", "syy"} }
+    assert(#pngs == 3)
+  )");
+  REQUIRE(error == "");
+  for (const char* q : {"ux", "uy", "syy"}) {
+    const std::string png = dir + "/probe_" + q + ".png";
+    std::ifstream in(png, std::ios::binary);
+    REQUIRE(in);
+    unsigned char head[24] = {};
+    in.read(reinterpret_cast<char*>(head), 24);
+    const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    CHECK(std::equal(signature, signature + 8, head));
+    const unsigned width = head[16] << 24 | head[17] << 16 | head[18] << 8 | head[19];
+    const unsigned height = head[20] << 24 | head[21] << 16 | head[22] << 8 | head[23];
+    CHECK(width == 960);
+    CHECK(height == 540);
+    CHECK(fs::file_size(png) > 5000);  // curves, labels: more than an empty frame
+  }
+  CHECK_THROWS_WITH(plot_probes(dir, {"speed"}), Catch::Contains("no probe column ends in .speed"));
+  CHECK_THROWS_WITH(plot_probes(dir + "/none", {"ux"}), Catch::Contains("probes.csv does not exist"));
+}
