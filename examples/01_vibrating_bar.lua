@@ -13,6 +13,7 @@ local bar = m:body{ name = "bar", material = steel, ppc = 2, shape = mpm.shape.r
 m:fix{ side = "left", dof = "x" }
 bar:set_velocity(function(x, y) return v0 * math.sin(math.pi * x / (2 * L)), 0 end)
 
+local tip = m:probe{ name = "free_end", body = bar, at = {L, h / 2}, every = 0.05 }
 local c = math.sqrt(E / rho)
 local period, amplitude = 4 * L / c, 2 / math.pi * v0
 
@@ -25,7 +26,7 @@ local function v_cm()
 end
 
 local out = mpm.out_dir("out/vibrating_bar")
-os.execute("mkdir -p '" .. out .. "'")
+m:output{ dir = out, every = 0.5 }                           -- ParaView: open out/vibrating_bar/particles.pvd
 local csv = assert(io.open(out .. "/centre_of_mass_velocity.csv", "w"))
 csv:write("time (s),v_cm (m/s),v_cm exact (m/s)\n")
 
@@ -47,4 +48,6 @@ print(string.format("vibrating bar, %d cells, %d particles, %d steps", cells, ba
 print(string.format("  period    %.5f s (exact %.5f s): error %.3f %%", measured, period, 100 * period_error))
 print(string.format("  amplitude %.6f m/s (exact %.6f m/s): error %.3f %%", peak, amplitude, 100 * amplitude_error))
 print("  history written to " .. out .. "/centre_of_mass_velocity.csv")
+for _, png in ipairs(m:plot{ quantities = {"ux", "vx"} }) do print("  plot " .. png) end
+print("  ParaView: " .. out .. "/particles.pvd")
 assert(period_error < 0.02 and amplitude_error < 0.02, "the bar is off its closed form by more than 2 %")

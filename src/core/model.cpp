@@ -62,10 +62,10 @@ int Model<Dim>::add_material(std::shared_ptr<const Material> material) {
 }
 
 template <int Dim>
-int Model<Dim>::add_body(const std::string& name, int ppc) {
+int Model<Dim>::add_body(const std::string& name, int ppc, bool rigid) {
   if (ppc < 1 || ppc > 16) throw InputError("body '" + name + "': ppc must be in [1, 16]");
   if (bodies_.size() >= 65535) throw InputError("model: too many bodies");
-  bodies_.push_back(Body{name, ppc});
+  bodies_.push_back(Body{name, ppc, rigid});
   return static_cast<int>(bodies_.size()) - 1;
 }
 

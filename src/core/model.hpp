@@ -40,7 +40,8 @@ struct ModelSettings {
 
 struct Body {
   std::string name;
-  int ppc = 2;  // particles per cell per axis at creation
+  int ppc = 2;         // particles per cell per axis at creation
+  bool rigid = false;  // prescribed-velocity particles (shaking-table box, sliding surface)
 };
 
 template <int Dim>
@@ -50,7 +51,7 @@ class Model {
 
   // --- building ---
   int add_material(std::shared_ptr<const Material> material);
-  int add_body(const std::string& name, int ppc);
+  int add_body(const std::string& name, int ppc, bool rigid = false);
   // Fills every cell sub-point (ppc per axis) that lies inside `inside` and the box [lo, hi]
   // with a particle of `body` and `material`. Returns the number of particles added.
   std::size_t fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,

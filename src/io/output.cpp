@@ -74,11 +74,19 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
   const double t = model.time();
   const int n = static_cast<int>(files_.size());
   const VtuMeta meta{t, phase};
+  const auto& P = model.particles();
+  const auto& bodies = model.bodies();
+  auto rigid = [&](std::size_t p) { return bodies[P.body[p]].rigid; };
   const std::string name = numbered("particles", n);
-  write_particles_vtu(settings_.dir + "/" + name, model.particles(), settings_.arrays, meta,
-                      [](std::size_t) { return true; });
+  write_particles_vtu(settings_.dir + "/" + name, P, settings_.arrays, meta, [&](std::size_t p) { return !rigid(p); });
   files_.emplace_back(t, name);
   write_file_atomically(settings_.dir + "/particles.pvd", pvd_text(files_));
+  if (std::any_of(bodies.begin(), bodies.end(), [](const Body& b) { return b.rigid; })) {
+    const std::string rigid_name = numbered("rigid", n);
+    write_particles_vtu(settings_.dir + "/" + rigid_name, P, settings_.arrays, meta, rigid);
+    rigid_files_.emplace_back(t, rigid_name);
+    write_file_atomically(settings_.dir + "/rigid.pvd", pvd_text(rigid_files_));
+  }
   if (settings_.grid) {
     const std::string grid_name = numbered("grid", n);
     write_grid_vtu(settings_.dir + "/" + grid_name, model.grid(), model.mass_threshold(), meta);

@@ -1,6 +1,7 @@
 // A model's output directory: particles_NNNNNN.vtu every `every` seconds with particles.pvd listing
-// them by simulated time (rewritten whole after every file, so it is always valid), optional
-// grid_NNNNNN.vtu + grid.pvd, and probes.csv with every field of every probe.
+// them by simulated time (rewritten whole after every file, so it is always valid); rigid bodies in
+// rigid_NNNNNN.vtu + rigid.pvd, so they can be hidden; optional grid_NNNNNN.vtu + grid.pvd; and
+// probes.csv with every field of every probe.
 #pragma once
 
 #include <memory>
@@ -41,6 +42,7 @@ class Output {
   double next_ = 0.0;
   std::vector<std::pair<double, std::string>> files_;  // time, particle file name
   std::vector<std::pair<double, std::string>> grid_files_;
+  std::vector<std::pair<double, std::string>> rigid_files_;
 };
 
 // The PVD collection text for (time, file) pairs.

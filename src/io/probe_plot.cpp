@@ -74,7 +74,7 @@ std::vector<std::string> plot_probes(const std::string& dir, const std::vector<s
     if (curves == 0) throw InputError("cannot plot '" + q + "': no probe column ends in ." + q + " in " + csv);
     const std::string png = dir + "/probe_" + q + ".png";
     std::ostringstream script;
-    script << "set terminal pngcairo size 960,540 enhanced font 'sans,11'\n"
+    script << "set terminal pngcairo size 960,540 noenhanced font 'sans,11'\n"
            << "set output " << quote(png + ".tmp") << "\n"
            << "set datafile separator ','\n"
            << "set title " << quote(describe(q) + " of the control points") << "\n"

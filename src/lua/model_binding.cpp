@@ -130,8 +130,9 @@ int model_probe(lua_State* L) {
   return 1;
 }
 
-// Steps until `duration` more seconds have passed, with progress, Ctrl-C and probes at the end.
-void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps) {
+// Steps until `duration` more seconds have passed (or max_steps), with progress, Ctrl-C, outputs at
+// their times and, for m:run, the final state on file.
+void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output) {
   Session& s = session(L);
   Model<2>& m = h.model;
   Progress progress(stderr, s.progress);
@@ -166,7 +167,7 @@ void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps) {
   }
   for (auto& p : h.probes) p->sample(m);
   // The end of a run is always on file, so ParaView and probes.csv show the final state.
-  if (h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
+  if (final_output && h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
   progress.finish(m.time(), m.steps(), "done");
 }
 
@@ -177,7 +178,7 @@ int model_step(lua_State* L) {
     if (!lua_isinteger(L, 2) || lua_tointeger(L, 2) < 1) throw Error("the number of steps must be a whole number >= 1");
     n = lua_tointeger(L, 2);
   }
-  run_for(L, h, INFINITY, n);
+  run_for(L, h, INFINITY, n, false);
   return 0;
 }
 
@@ -194,7 +195,7 @@ int model_run(lua_State* L) {
     }
     h.damping->set_alpha(*damping);
   }
-  run_for(L, h, duration, std::numeric_limits<long>::max());
+  run_for(L, h, duration, std::numeric_limits<long>::max(), true);
   return 0;
 }
 

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "materials/linear_elastic.hpp"
 #include "io/output.hpp"
 #include "io/probe_plot.hpp"
 #include "lua/lua_fixture.hpp"
@@ -124,6 +125,26 @@ TEST_CASE("ParaView files hold the particle state and the pvd lists them with th
   CHECK(std::count(csv[0].begin(), csv[0].end(), ',') == 21);  // time + 21 fields in 2D
   // No temporary files are left behind.
   for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().extension() != ".tmp");
+}
+
+TEST_CASE("rigid bodies go to their own files", "[io][vtu]") {
+  const std::string dir = fresh_dir("rigid");
+  ModelSettings<2> s;
+  s.cell = 0.1;
+  Model<2> m(s);
+  const int mat = m.add_material(std::make_shared<LinearElastic>(1000, 1e6, 0.3));
+  m.fill_box(m.add_body("soil", 2), mat, Vec<2>(0.2, 0.3), Vec<2>(0.8, 0.8));
+  m.fill_box(m.add_body("base", 2, true), mat, Vec<2>(0.0, 0.0), Vec<2>(1.0, 0.2));
+  Output<2> out(OutputSettings{dir, 0.1});
+  out.write(m, {}, "gravity");
+  CHECK(read_vtu(dir + "/particles_000000.vtu")->GetNumberOfPoints() == 120);  // 0.6 x 0.5 m, 4 per 0.1 m cell
+  auto rigid = read_vtu(dir + "/rigid_000000.vtu");
+  CHECK(rigid->GetNumberOfPoints() == 80);
+  CHECK(rigid->GetPointData()->GetArray("body")->GetRange()[0] == 1);
+  CHECK(read_pvd(dir + "/rigid.pvd").size() == 1);
+  auto* phase = vtkStringArray::SafeDownCast(rigid->GetFieldData()->GetAbstractArray("phase"));
+  REQUIRE(phase);
+  CHECK(phase->GetValue(0) == "gravity");
 }
 
 TEST_CASE("a run that fails between two writes leaves valid files", "[io][vtu]") {
