@@ -56,12 +56,15 @@ int destroy(lua_State* L) {
   return 0;
 }
 
-// Creates the metatable for a type: __name, __gc, __index = methods table (left on the stack).
-template <class T>
+// Creates the metatable for a type: __name, __gc, __tostring (a one-line summary) and
+// __index = a methods table, which is left on the stack for the caller to fill.
+template <class T, int (*ToString)(lua_State*)>
 void new_type(lua_State* L, const char* type) {
   luaL_newmetatable(L, type);
   lua_pushcfunction(L, &destroy<T>);
   lua_setfield(L, -2, "__gc");
+  push_function(L, &guarded<ToString>, (std::string(type) + ":__tostring").c_str());
+  lua_setfield(L, -2, "__tostring");
   lua_newtable(L);
   lua_pushvalue(L, -1);
   lua_setfield(L, -3, "__index");

@@ -98,15 +98,12 @@ int body_set_velocity(lua_State* L) {
 }  // namespace
 
 void open_body(lua_State* L) {
-  new_type<BodyObject>(L, kBodyType);
+  new_type<BodyObject, body_tostring>(L, kBodyType);
   set_function<body_name>(L, -1, "name", "body:name");
   set_function<body_count>(L, -1, "count", "body:count");
   set_function<body_centroid>(L, -1, "centroid", "body:centroid");
   set_function<body_field>(L, -1, "field", "body:field");
   set_function<body_set_velocity>(L, -1, "set_velocity", "body:set_velocity");
-  lua_pop(L, 1);
-  luaL_getmetatable(L, kBodyType);
-  set_function<body_tostring>(L, -1, "__tostring", "body:__tostring");
   lua_pop(L, 1);
 }
 

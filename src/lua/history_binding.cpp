@@ -92,11 +92,8 @@ std::shared_ptr<const History> to_history(lua_State* L, int index, const std::st
 }
 
 void open_history(lua_State* L, int mpm) {
-  new_type<HistoryObject>(L, kHistoryType);
+  new_type<HistoryObject, history_tostring>(L, kHistoryType);
   set_function<history_at>(L, -1, "at", "history:at");
-  lua_pop(L, 1);
-  luaL_getmetatable(L, kHistoryType);
-  set_function<history_tostring>(L, -1, "__tostring", "history:__tostring");
   lua_pop(L, 1);
   lua_newtable(L);
   set_function<table>(L, -1, "table", "mpm.history.table");

@@ -92,11 +92,8 @@ int drucker_prager(lua_State* L) {
 }  // namespace
 
 void open_material(lua_State* L, int mpm) {
-  new_type<MaterialObject>(L, kMaterialType);
+  new_type<MaterialObject, material_tostring>(L, kMaterialType);
   set_function<material_kind>(L, -1, "kind", "material:kind");
-  lua_pop(L, 1);
-  luaL_getmetatable(L, kMaterialType);
-  set_function<material_tostring>(L, -1, "__tostring", "material:__tostring");
   lua_pop(L, 1);
   lua_newtable(L);
   set_function<linear_elastic>(L, -1, "linear_elastic", "mpm.material.linear_elastic");

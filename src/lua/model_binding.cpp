@@ -307,7 +307,7 @@ int model_bodies(lua_State* L) {
 }  // namespace
 
 void open_model(lua_State* L, int mpm) {
-  new_type<ModelObject>(L, kModelType);
+  new_type<ModelObject, model_tostring>(L, kModelType);
   set_function<model_body>(L, -1, "body", "model:body");
   set_function<model_fix>(L, -1, "fix", "model:fix");
   set_function<model_probe>(L, -1, "probe", "model:probe");
@@ -321,9 +321,6 @@ void open_model(lua_State* L, int mpm) {
   set_function<model_energy>(L, -1, "energy", "model:energy");
   set_function<model_count>(L, -1, "count", "model:count");
   set_function<model_bodies>(L, -1, "bodies", "model:bodies");
-  lua_pop(L, 1);
-  luaL_getmetatable(L, kModelType);
-  set_function<model_tostring>(L, -1, "__tostring", "model:__tostring");
   lua_pop(L, 1);
   set_function<model_new>(L, mpm, "model", "mpm.model");
 }

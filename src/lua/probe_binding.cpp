@@ -60,13 +60,10 @@ int probe_series(lua_State* L) {
 }  // namespace
 
 void open_probe(lua_State* L) {
-  new_type<ProbeObject>(L, kProbeType);
+  new_type<ProbeObject, probe_tostring>(L, kProbeType);
   set_function<probe_name>(L, -1, "name", "probe:name");
   set_function<probe_get>(L, -1, "get", "probe:get");
   set_function<probe_series>(L, -1, "series", "probe:series");
-  lua_pop(L, 1);
-  luaL_getmetatable(L, kProbeType);
-  set_function<probe_tostring>(L, -1, "__tostring", "probe:__tostring");
   lua_pop(L, 1);
 }
 

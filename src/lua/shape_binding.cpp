@@ -63,11 +63,8 @@ int polyline(lua_State* L) {
 }  // namespace
 
 void open_shape(lua_State* L, int mpm) {
-  new_type<ShapeObject>(L, kShapeType);
+  new_type<ShapeObject, shape_tostring>(L, kShapeType);
   set_function<shape_contains>(L, -1, "contains", "shape:contains");
-  lua_pop(L, 1);
-  luaL_getmetatable(L, kShapeType);
-  set_function<shape_tostring>(L, -1, "__tostring", "shape:__tostring");
   lua_pop(L, 1);
   lua_newtable(L);
   set_function<rectangle>(L, -1, "rectangle", "mpm.shape.rectangle");
