@@ -131,8 +131,16 @@ double MohrCoulomb::yield_function(const Sym& stress, double plastic) const {
 MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, double plastic) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
   const Sym trial = elastic_trial(stress, de, lambda, two_g);
-  const ReturnTables& t = p_.softening ? tables(plastic) : fixed_;
   const Eigen::Vector3d sb = principal_values(trial);
+  ReturnTables softened;
+  if (p_.softening) {
+    // Elastic points need only the current strength; the return tables are built for plastic ones.
+    const Strength st = strength(p_, plastic);
+    if (st.k() * sb[0] - sb[2] - st.sigma_c() <= 0.0 && sb[0] <= p_.tension)
+      return {trial, Sym::Zero(), 0.0, Return::Elastic};
+    softened = tables(plastic);
+  }
+  const ReturnTables& t = p_.softening ? softened : fixed_;
   const double scale = std::max({sb.cwiseAbs().maxCoeff(), t.sigma_c, p_.tension, 1e-300});
   const double tol = 1e-10 * scale;
   auto violated = [&](const Eigen::Vector3d& v, double margin) {
