@@ -53,6 +53,19 @@ const std::vector<ApiDoc>& api_docs() {
       {"mpm.history.fn", "mpm.history.fn(function(t) return value end)",
        "A history computed by a Lua function of time (s).",
        "local vx = mpm.history.fn(function(t) return 0.1 * math.sin(2 * math.pi * 3 * t) end)"},
+      {"mpm.history.at2",
+       "mpm.history.at2{ file, integrate = \"velocity\", baseline = \"none\", scale = 1, units = \"g\", format }",
+       "A ground-motion record: PEER NGA .AT2 (acceleration in g) or a two-column time, acceleration file (comma or "
+       "white space, '#' comments, units = \"g\" | \"m/s2\" | \"gal\"; format = \"at2\" | \"columns\", by "
+       "default from the extension). integrate = \"velocity\" (trapezoidal rule) or \"none\" (the acceleration, "
+       "m/s2). baseline = \"linear\" removes the drift so velocity and displacement end at zero; \"quadratic\" "
+       "first removes a least-squares quadratic trend of the velocity. tostring(h) reports the peak and end values "
+       "before and after. Errors name the file and line.",
+       "local table = mpm.history.at2{ file = \"data/TCU068-E.AT2\", baseline = \"linear\", scale = 0.5 }"},
+      {"history:peak", "h:peak()", "The largest |value| of a tabulated history.", "print(vx:peak())"},
+      {"history:duration", "h:duration()", "Time from the first to the last point (s).", "print(vx:duration())"},
+      {"history:write_csv", "h:write_csv(file)", "Writes the points as t,value (atomically).",
+       "vx:write_csv(\"out/table_velocity.csv\")"},
       {"mpm.param", "mpm.param(name, default)",
        "A scenario parameter: the value given on the command line with --set name=value, converted to the type of "
        "default (number, boolean or string), or default when not given.",
