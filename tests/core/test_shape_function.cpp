@@ -72,6 +72,16 @@ TEST_CASE("uGIMP matches its closed form piece by piece", "[core][shape]") {
     const double fd = (GimpShape::value(r + 1e-7, l) - GimpShape::value(r - 1e-7, l)) / 2e-7;
     CHECK(GimpShape::derivative(r, l) == Approx(fd).margin(1e-6));
   }
+  // The fused evaluation the kernel uses gives the same numbers.
+  for (double xi = 2.0; xi < 3.0; xi += 0.0371) {
+    double w[3], dw[3];
+    const int first = GimpShape::first_node(xi, l);
+    GimpShape::eval(xi, l, first, w, dw);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(w[k] == GimpShape::value(xi - (first + k), l));
+      CHECK(dw[k] == GimpShape::derivative(xi - (first + k), l));
+    }
+  }
 }
 
 TEST_CASE("uGIMP tends to the linear tent as the particle size goes to zero", "[core][shape]") {
