@@ -48,7 +48,8 @@ const std::vector<ApiDoc>& api_docs() {
        "local vx = mpm.history.table{ {0, 0}, {0.1, 2}, {5, 2} }"},
       {"mpm.history.csv", "mpm.history.csv{ file, time = \"t\", value, scale = 1, shift = 0 }",
        "A history from two named columns of a CSV file with a header line; '#' lines are skipped; values are "
-       "multiplied by scale and times shifted by shift (s). Errors name the file and line.",
+       "multiplied by scale and times shifted by shift (s). A relative file not found from the current directory is "
+       "looked for next to the script. Errors name the file and line.",
        "local vx = mpm.history.csv{ file = \"data/table_velocity.csv\", time = \"t\", value = \"vx\" }"},
       {"mpm.history.fn", "mpm.history.fn(function(t) return value end)",
        "A history computed by a Lua function of time (s).",

@@ -9,6 +9,7 @@
 #include "io/csv_table.hpp"
 #include "io/ground_motion.hpp"
 #include "objects.hpp"
+#include "session.hpp"
 
 namespace seismpm::lua {
 
@@ -44,7 +45,7 @@ int table(lua_State* L) {
 // mpm.history.csv{file =, time = "t", value = "v", scale = 1, shift = 0}
 int csv(lua_State* L) {
   Args a(L, 1, {"file", "time", "value", "scale", "shift"});
-  const std::string file = a.string("file");
+  const std::string file = data_path(L, a.string("file"));
   const std::string time = a.string("time", "t");
   const std::string value = a.string("value");
   const double scale = a.number("scale", 1.0);
@@ -96,7 +97,7 @@ int history_write_csv(lua_State* L) {
 // mpm.history.at2{ file, integrate = "velocity", baseline = "none", scale = 1, units = "g", format }
 int at2(lua_State* L) {
   Args a(L, 1, {"file", "integrate", "baseline", "scale", "units", "format"});
-  const std::string file = a.string("file");
+  const std::string file = data_path(L, a.string("file"));
   const std::string integrate = a.choice("integrate", {"velocity", "none"}, "velocity");
   const Baseline baseline = parse_baseline(a.choice("baseline", {"none", "linear", "quadratic"}, "none"));
   const double scale = a.number("scale", 1.0);

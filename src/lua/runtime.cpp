@@ -72,6 +72,14 @@ int traceback(lua_State* L) {
 
 }  // namespace
 
+std::string data_path(lua_State* L, const std::string& file) {
+  namespace fs = std::filesystem;
+  const std::string& dir = session(L).script_dir;
+  if (file.empty() || fs::path(file).is_absolute() || fs::exists(file) || dir.empty()) return file;
+  const fs::path beside = fs::path(dir) / file;
+  return fs::exists(beside) ? beside.string() : file;
+}
+
 Session& session(lua_State* L) {
   lua_getfield(L, LUA_REGISTRYINDEX, kSessionKey);
   auto* s = static_cast<Session*>(lua_touserdata(L, -1));
@@ -134,6 +142,8 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
     lua_rawseti(L_, -2, static_cast<lua_Integer>(i + 1));
   }
   lua_setglobal(L_, "arg");
+  std::error_code ec;
+  session_.script_dir = std::filesystem::absolute(file, ec).parent_path().string();
   if (luaL_loadfile(L_, file.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {
     std::fprintf(stderr, "seismpm: %s\n", lua_tostring(L_, -1));
     lua_pop(L_, 1);

@@ -17,7 +17,11 @@ struct Session {
   std::string out_dir;                        // --out: replaces every output directory when set
   Progress::Mode progress = Progress::Mode::Log;
   std::atomic<bool> interrupted{false};
+  std::string script_dir;                     // directory of the script being run, for its data files
 };
+
+// A data file named in a script: as given when it exists (or is absolute), otherwise next to the script.
+std::string data_path(lua_State* L, const std::string& file);
 
 // The session stored in the state's registry by open_seismpm.
 Session& session(lua_State* L);
