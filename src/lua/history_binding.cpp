@@ -84,8 +84,8 @@ int history_duration(lua_State* L) {
 
 int history_write_csv(lua_State* L) {
   const auto& t = table_of(L, "write_csv");
+  if (lua_type(L, 2) != LUA_TSTRING) throw Error("expects a file name (a string)");  // before lua_tostring converts numbers
   const char* file = lua_tostring(L, 2);
-  if (!file || lua_type(L, 2) != LUA_TSTRING) throw Error("expects a file name");
   std::ostringstream os;
   os.precision(10);
   os << "t,value\n";

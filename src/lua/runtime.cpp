@@ -15,8 +15,8 @@ constexpr const char* kSessionKey = "seismpm.session";
 
 // mpm.param(name, default)
 int param(lua_State* L) {
+  if (lua_type(L, 1) != LUA_TSTRING) throw Error("expects a parameter name (string) and a default");
   const char* name = lua_tostring(L, 1);
-  if (!name || lua_type(L, 1) != LUA_TSTRING) throw Error("expects a parameter name (string) and a default");
   const auto& params = session(L).params;
   const auto it = params.find(name);
   if (it == params.end()) {

@@ -1,6 +1,8 @@
 // The Lua API driving the kernel: good scripts give the physics, bad ones a named error.
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+
 #include "lua_fixture.hpp"
 
 using seismpm::test::LuaFixture;
@@ -209,6 +211,15 @@ TEST_CASE("csv histories name the file and the line of bad data", "[lua][errors]
 }
 
 TEST_CASE("no input, however wrong, crashes the program", "[lua][errors][fuzz]") {
+  // Calls that write files (h:write_csv("x")) do so in a scratch directory.
+  const auto scratch = std::filesystem::temp_directory_path() / "seismpm_fuzz";
+  std::filesystem::create_directories(scratch);
+  const auto cwd = std::filesystem::current_path();
+  std::filesystem::current_path(scratch);
+  struct Restore {
+    std::filesystem::path dir;
+    ~Restore() { std::filesystem::current_path(dir); }
+  } restore{cwd};
   LuaFixture f;
   // Every function and method with every kind of wrong value: each must raise a Lua error or work.
   const std::string error = f.error_of(std::string(kBlock) + R"(
