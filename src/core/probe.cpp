@@ -47,13 +47,6 @@ std::vector<double> Probe<Dim>::series(Field f) const {
   return out;
 }
 
-template <int Dim>
-double Probe<Dim>::latest(Field f) const {
-  std::size_t column = 0;
-  while (fields_[column] != f) ++column;
-  return values_[(times_.size() - 1) * fields_.size() + column];
-}
-
 template class Probe<2>;
 template class Probe<3>;
 

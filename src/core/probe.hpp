@@ -28,8 +28,6 @@ class Probe : public Fix<Dim> {
   const std::vector<double>& times() const { return times_; }
   std::vector<double> series(Field f) const;
   std::size_t samples() const { return times_.size(); }
-  // Value of the field in the latest sample.
-  double latest(Field f) const;
 
  private:
   std::string name_;

@@ -230,6 +230,39 @@ std::vector<Vec<2>> Args::points(const char* key) {
   return out;
 }
 
+std::optional<std::vector<std::string>> Args::names(const char* key) {
+  const int top = lua_gettop(L_);
+  if (push(key) == LUA_TNIL) {
+    lua_settop(L_, top);
+    return std::nullopt;
+  }
+  std::vector<std::string> out;
+  try {
+    if (!lua_istable(L_, -1)) throw Error(std::string("key '") + key + "' must be a list of names such as {\"ux\", \"uy\"}");
+    for (lua_Integer i = 1; i <= luaL_len(L_, -1); ++i) {
+      lua_rawgeti(L_, -1, i);
+      if (lua_type(L_, -1) != LUA_TSTRING)
+        throw Error(std::string("key '") + key + "': entry " + std::to_string(i) + " must be a name");
+      out.emplace_back(lua_tostring(L_, -1));
+      lua_pop(L_, 1);
+    }
+    if (out.empty()) throw Error(std::string("key '") + key + "' is empty");
+  } catch (...) {
+    lua_settop(L_, top);
+    throw;
+  }
+  lua_settop(L_, top);
+  return out;
+}
+
+Field field_argument(lua_State* L, int index) {
+  if (lua_type(L, index) != LUA_TSTRING) throw Error("expects a field name, one of: " + field_names(2));
+  const char* name = lua_tostring(L, index);
+  const auto f = parse_field(name, 2);
+  if (!f) throw Error(std::string("unknown field '") + name + "' (fields: " + field_names(2) + ")");
+  return *f;
+}
+
 double Args::positive(const char* key, double v, const char* unit) {
   if (!(v > 0.0)) throw Error(std::string("key '") + key + "' must be > 0" + unit_suffix(unit) + ", got " + format(v));
   return v;

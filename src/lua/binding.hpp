@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/particle_fields.hpp"
 #include "core/types.hpp"
 
 namespace seismpm::lua {
@@ -114,6 +115,8 @@ class Args {
   bool boolean(const char* key, bool fallback);
   Vec<2> point(const char* key);                    // {x, y}
   std::vector<Vec<2>> points(const char* key);      // {{x, y}, ...}
+  // A non-empty list of strings {"a", "b"}; nullopt when the key is absent.
+  std::optional<std::vector<std::string>> names(const char* key);
 
   // Range checks with messages such as "key 'cell' must be > 0 (m), got -1".
   static double positive(const char* key, double v, const char* unit = "");
@@ -133,6 +136,9 @@ class Args {
   lua_State* L_;
   int index_;
 };
+
+// A particle field name at `index` (body:field, probe:get); the error lists the names.
+Field field_argument(lua_State* L, int index);
 
 // Reads {x, y} at the top of the stack; `what` names it in messages.
 Vec<2> to_point(lua_State* L, int index, const std::string& what);

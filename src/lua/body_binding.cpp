@@ -54,14 +54,11 @@ int body_centroid(lua_State* L) {
 
 int body_field(lua_State* L) {
   const auto& b = self(L);
-  const char* name = lua_tostring(L, 2);
-  if (!name) throw Error("expects a field name, one of: " + field_names(2));
-  const auto f = parse_field(name, 2);
-  if (!f) throw Error(std::string("unknown field '") + name + "' (fields: " + field_names(2) + ")");
+  const Field f = field_argument(L, 2);
   const auto list = particles_of(b);
   lua_createtable(L, static_cast<int>(list.size()), 0);
   for (std::size_t k = 0; k < list.size(); ++k) {
-    lua_pushnumber(L, field_value(b.handle->model.particles(), list[k], *f));
+    lua_pushnumber(L, field_value(b.handle->model.particles(), list[k], f));
     lua_rawseti(L, -2, static_cast<lua_Integer>(k + 1));
   }
   return 1;

@@ -204,24 +204,18 @@ int model_output(lua_State* L) {
   ModelHandle& h = self(L);
   Args a(L, 2, {"dir", "every", "fields", "grid", "probe_every"});
   OutputSettings s;
-  const std::string& forced = session(L).out_dir;
-  s.dir = forced.empty() ? a.string("dir") : (a.has("dir") ? (a.string("dir"), forced) : forced);
+  const std::string& forced = session(L).out_dir;  // --out replaces the script's directory
+  if (a.has("dir") || forced.empty()) s.dir = a.string("dir");
+  if (!forced.empty()) s.dir = forced;
   s.every = Args::positive("every", a.number("every", 0.1), "s");
   s.grid = a.boolean("grid", false);
-  if (a.push("fields") != LUA_TNIL) {
-    if (!lua_istable(L, -1)) throw Error("key 'fields' must be a list of field names");
+  if (const auto fields = a.names("fields")) {
     s.arrays.clear();
-    for (lua_Integer i = 1; i <= luaL_len(L, -1); ++i) {
-      lua_rawgeti(L, -1, i);
-      const char* name = lua_tostring(L, -1);
-      if (!name || lua_type(L, -1) != LUA_TSTRING) throw Error("key 'fields': entry " + std::to_string(i) + " must be a name");
+    for (const auto& name : *fields) {
       const VtuArray array = parse_vtu_array(name);
       if (std::find(s.arrays.begin(), s.arrays.end(), array) == s.arrays.end()) s.arrays.push_back(array);
-      lua_pop(L, 1);
     }
-    if (s.arrays.empty()) throw Error("key 'fields' is empty");
   }
-  lua_pop(L, 1);
   if (auto pe = a.optional_number("probe_every")) {
     Args::at_least("probe_every", *pe, 0.0, "s");
     for (auto& p : h.probes) p->set_every(*pe);
@@ -237,19 +231,10 @@ int model_plot(lua_State* L) {
   std::vector<std::string> quantities = {"ux", "uy"};
   if (!lua_isnoneornil(L, 2)) {
     Args a(L, 2, {"quantities"});
-    if (a.push("quantities") != LUA_TNIL) {
-      if (!lua_istable(L, -1)) throw Error("key 'quantities' must be a list of field names such as {\"ux\", \"uy\"}");
-      quantities.clear();
-      for (lua_Integer i = 1; i <= luaL_len(L, -1); ++i) {
-        lua_rawgeti(L, -1, i);
-        const char* q = lua_tostring(L, -1);
-        if (!q || !parse_field(q, 2)) throw Error("key 'quantities': entry " + std::to_string(i) + " is not a field name (" + field_names(2) + ")");
-        quantities.emplace_back(q);
-        lua_pop(L, 1);
-      }
-    }
-    lua_pop(L, 1);
+    if (auto names = a.names("quantities")) quantities = std::move(*names);
   }
+  for (const auto& q : quantities)
+    if (!parse_field(q, 2)) throw Error("key 'quantities': '" + q + "' is not a field name (" + field_names(2) + ")");
   if (!h.output) throw Error("no output directory yet: call m:output{ dir = ... } first");
   if (h.probes.empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
   write_file_atomically(h.output->settings().dir + "/probes.csv", probes_csv_text(h.probes));

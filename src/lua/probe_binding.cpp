@@ -11,14 +11,6 @@ namespace {
 
 ProbeObject& self(lua_State* L) { return check_object<ProbeObject>(L, 1, kProbeType, "self"); }
 
-Field field_arg(lua_State* L) {
-  const char* name = lua_tostring(L, 2);
-  if (!name) throw Error("expects a field name, one of: " + field_names(2));
-  const auto f = parse_field(name, 2);
-  if (!f) throw Error(std::string("unknown field '") + name + "' (fields: " + field_names(2) + ")");
-  return *f;
-}
-
 int probe_tostring(lua_State* L) {
   const auto& p = self(L);
   std::ostringstream os;
@@ -35,7 +27,7 @@ int probe_name(lua_State* L) {
 
 int probe_get(lua_State* L) {
   const auto& p = self(L);
-  const Field f = field_arg(L);
+  const Field f = field_argument(L, 2);
   const auto& m = p.handle->model;
   lua_pushnumber(L, field_value(m.particles(), m.index_of(p.probe->particle_id()), f));
   return 1;
@@ -44,7 +36,7 @@ int probe_get(lua_State* L) {
 // Returns two arrays: times and values.
 int probe_series(lua_State* L) {
   const auto& p = self(L);
-  const Field f = field_arg(L);
+  const Field f = field_argument(L, 2);
   const auto& t = p.probe->times();
   const auto v = p.probe->series(f);
   for (const auto* column : {&t, &v}) {
