@@ -33,6 +33,16 @@ void LocalDamping<Dim>::nodal_forces(Model<Dim>& model) {
       g.force[i][d] -= alpha * std::abs(g.force[i][d]) * s;
     }
   }
+  // Each contact field's own forces where fields meet (rigid fields carry none).
+  auto& sh = model.shared_nodes();
+  const int slots = static_cast<int>(sh.force.size());
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < slots; ++k)
+    for (int d = 0; d < Dim; ++d) {
+      const double v = sh.momentum[k][d];
+      const double s = (v > 0.0) - (v < 0.0);
+      sh.force[k][d] -= alpha * std::abs(sh.force[k][d]) * s;
+    }
 }
 
 template class LocalDamping<2>;

@@ -1,6 +1,7 @@
 #include "model.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -63,16 +64,91 @@ int Model<Dim>::add_material(std::shared_ptr<const Material> material) {
 
 template <int Dim>
 int Model<Dim>::add_body(const std::string& name, int ppc, bool rigid) {
+  if (rigid) {  // at rest until given a velocity
+    std::array<std::shared_ptr<const History>, Dim> zero;
+    zero.fill(std::make_shared<ConstantHistory>(0.0));
+    return add_rigid_body(name, ppc, 1000.0, zero);
+  }
+  return new_body(name, ppc, false);
+}
+
+template <int Dim>
+int Model<Dim>::new_body(const std::string& name, int ppc, bool rigid) {
   if (ppc < 1 || ppc > 16) throw InputError("body '" + name + "': ppc must be in [1, 16]");
   if (bodies_.size() >= 65535) throw InputError("model: too many bodies");
-  bodies_.push_back(Body{name, ppc, rigid});
+  bodies_.push_back(Body{name, ppc, rigid, -1});
+  motion_.emplace_back();
+  fields_valid_ = false;
   return static_cast<int>(bodies_.size()) - 1;
+}
+
+template <int Dim>
+int Model<Dim>::add_rigid_body(const std::string& name, int ppc, double density,
+                               const std::array<std::shared_ptr<const History>, Dim>& velocity) {
+  if (!(density > 0.0 && std::isfinite(density))) throw InputError("rigid body '" + name + "': density must be > 0");
+  const int body = new_body(name, ppc, true);
+  bodies_[body].material = add_material(std::make_shared<RigidMaterial>(density));
+  set_rigid_velocity(body, velocity);
+  return body;
+}
+
+template <int Dim>
+void Model<Dim>::set_rigid_velocity(int body, const std::array<std::shared_ptr<const History>, Dim>& velocity) {
+  if (body < 0 || body >= static_cast<int>(bodies_.size()) || !bodies_[body].rigid)
+    throw InputError("set_rigid_velocity: not a rigid body");
+  for (const auto& h : velocity)
+    if (!h) throw InputError("rigid body '" + bodies_[body].name + "': missing velocity history");
+  motion_[body].velocity = velocity;
+}
+
+template <int Dim>
+void Model<Dim>::add_contact(int a, int b, double friction) {
+  const int n = static_cast<int>(bodies_.size());
+  if (a < 0 || a >= n || b < 0 || b >= n) throw InputError("contact: unknown body");
+  if (a == b) throw InputError("contact: body '" + bodies_[a].name + "' cannot be in contact with itself");
+  if (!(friction >= 0.0 && std::isfinite(friction)))
+    throw InputError("contact: friction must be a finite number >= 0");
+  if (bodies_[a].rigid && bodies_[b].rigid)
+    throw InputError("contact: '" + bodies_[a].name + "' and '" + bodies_[b].name +
+                     "' are both rigid; contact acts between a rigid and a deformable body or two deformable ones");
+  for (const auto& c : contacts_)
+    if ((c.a == a && c.b == b) || (c.a == b && c.b == a))
+      throw InputError("contact: the pair '" + bodies_[a].name + "', '" + bodies_[b].name + "' is declared already");
+  contacts_.push_back(ContactPair{a, b, friction});
+  fields_valid_ = false;
+}
+
+template <int Dim>
+void Model<Dim>::begin_phase(bool rigid_bodies_move) {
+  phase_start_ = time_;
+  rigid_bodies_move_ = rigid_bodies_move;
+}
+
+// Field 0 is shared by every deformable body named in no contact pair; every rigid body and every
+// body named in a pair gets its own.
+template <int Dim>
+void Model<Dim>::rebuild_contact_fields() {
+  const int n = static_cast<int>(bodies_.size());
+  field_of_body_.assign(n, 0);
+  body_rigid_.assign(n, 0);
+  int fields = 1;
+  for (int b = 0; b < n; ++b) {
+    body_rigid_[b] = bodies_[b].rigid;
+    const bool paired = std::any_of(contacts_.begin(), contacts_.end(), [&](const ContactPair& c) { return c.a == b || c.b == b; });
+    if (bodies_[b].rigid || paired) field_of_body_[b] = fields++;
+  }
+  if (fields > 32000) throw InputError("model: too many bodies in contact pairs");
+  rules_.reset(fields);
+  for (int b = 0; b < n; ++b) rules_.set_rigid(field_of_body_[b], bodies_[b].rigid);
+  for (const auto& c : contacts_) rules_.set_friction(field_of_body_[c.a], field_of_body_[c.b], c.friction);
+  fields_valid_ = true;
 }
 
 template <int Dim>
 std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,
                              const std::function<bool(const Vec<Dim>&)>& inside) {
   if (body < 0 || body >= static_cast<int>(bodies_.size())) throw InputError("fill: unknown body");
+  if (bodies_[body].rigid) material = bodies_[body].material;
   if (material < 0 || material >= material_count()) throw InputError("fill: unknown material");
   double candidates = 1.0;  // sub-points in the box: refuse what would exhaust memory
   for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * bodies_[body].ppc;
@@ -115,10 +191,10 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
     while (d < Dim && ++c[d] > c1[d]) c[d] = c0[d], ++d;
     if (d == Dim) break;
   }
-  if (added) {
+  if (added && !bodies_[body].rigid) {
     mass_threshold_ = std::max(mass_threshold_, 1e-12 * mass);
-    material_lists_valid_ = false;
   }
+  if (added) material_lists_valid_ = false;
   return added;
 }
 
@@ -160,31 +236,52 @@ void Model<Dim>::step(double dt_max) {
     step_with<GimpShape>(dt);
 }
 
-// One explicit MPM step, in the order of the method (PHYSICS.md, "One explicit step").
+// One explicit MPM step, in the order of the method (PHYSICS.md, "One explicit step"). With contact
+// fields (rigid bodies, contact pairs) the nodes where fields meet carry a velocity per field.
 template <int Dim>
 template <class Shape>
 void Model<Dim>::step_with(double dt) {
   double t = settings_.profile ? omp_get_wtime() : 0.0;
   dt_ = dt;
+  if (!fields_valid_) rebuild_contact_fields();
+  const bool multi = rules_.fields() > 1;
   for (auto& f : fixes_) f->before_step(*this);
+  if (multi) assign_rigid_velocities();  // v_R(t) on the rigid particles
   grid_.reset();
   lap("reset", t);
   compute_stencils<Shape>();        // shape functions at the start-of-step positions
   lap("stencils", t);
-  particles_to_grid<Shape>();       // nodal mass, momentum, internal + external force
+  if (multi) {
+    mark_shared_nodes<Shape>();     // which nodes more than one contact field touches
+    lap("contact fields", t);
+    particles_to_grid<Shape, true>();
+  } else {
+    particles_to_grid<Shape, false>();  // nodal mass, momentum, internal + external force
+  }
   lap("particles to grid", t);
   for (auto& f : fixes_) f->nodal_forces(*this);  // e.g. local damping
   update_nodal_velocities();        // a = f/m, v^L = mv/m + dt a
-  constrain_velocities(VelocityStage::Updated);
+  if (multi) update_shared_velocities();
+  constrain_velocities(VelocityStage::Updated);  // contact, fixities, prescribed nodes
   lap("nodes", t);
-  grid_to_particles<Shape>();       // FLIP/PIC velocity, position, displacement
+  if (multi)
+    grid_to_particles<Shape, true>();
+  else
+    grid_to_particles<Shape, false>();  // FLIP/PIC velocity, position, displacement
   lap("grid to particles", t);
   if (settings_.scheme == Scheme::Musl) {
-    remap_momentum<Shape>();        // nodal velocity from the updated particle momentum
+    // Nodal velocity from the updated particle momentum.
+    if (multi)
+      remap_momentum<Shape, true>();
+    else
+      remap_momentum<Shape, false>();
     constrain_velocities(VelocityStage::Remapped);
   }
   lap("MUSL re-map", t);
-  update_stress<Shape>();           // velocity gradient, objective rate, constitutive model, volume
+  if (multi)
+    update_stress<Shape, true>();
+  else
+    update_stress<Shape, false>();  // velocity gradient, objective rate, constitutive model, volume
   lap("stress", t);
   time_ += dt;
   ++steps_;
@@ -253,22 +350,129 @@ void Model<Dim>::compute_stencils() {
   schedule_.build(n, grid_.cells(slab_axis_), [&](int p) { return cell_of_[p] / per_layer; });
 }
 
+// Sets v_R (at the middle of the step, so a rigid body travels the integral of its history) on the
+// rigid particles, and stops before one would leave the grid.
+template <int Dim>
+void Model<Dim>::assign_rigid_velocities() {
+  const double t_mid = phase_time() + 0.5 * dt_;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (!bodies_[b].rigid) continue;
+    auto& m = motion_[b];
+    for (int d = 0; d < Dim; ++d) m.current[d] = rigid_bodies_move_ ? m.velocity[d]->at(t_mid) : 0.0;
+    m.force.setZero();
+    if (!m.current.allFinite()) {
+      std::ostringstream os;
+      os << "step " << steps_ << " (t = " << time_ << " s): the velocity history of rigid body '" << bodies_[b].name
+         << "' gave " << format_point<Dim>(m.current) << " m/s at phase time " << t_mid << " s";
+      throw SimulationError(os.str());
+    }
+  }
+  const int n = static_cast<int>(particles_.size());
+  auto& P = particles_;
+  int leaving = n;
+#pragma omp parallel for schedule(static) reduction(min : leaving)
+  for (int p = 0; p < n; ++p) {
+    const int b = P.body[p];
+    if (!body_rigid_[b]) continue;
+    P.v[p] = motion_[b].current;
+    if (!inside_domain(grid_, Vec<Dim>(P.x[p] + dt_ * P.v[p]))) leaving = std::min(leaving, p);
+  }
+  if (leaving < n) {
+    std::ostringstream os;
+    os << "is about to leave the grid: rigid body '" << bodies_[P.body[leaving]].name << "' moves at "
+       << format_point<Dim>(P.v[leaving]) << " m/s";
+    fail(leaving, os.str());
+  }
+}
+
+// Each contact field marks the nodes it touches: a deformable particle its whole stencil, a rigid
+// particle the nodes of its cell (the paper's boundary nodes of the rigid body).
 template <int Dim>
 template <class Shape>
+void Model<Dim>::mark_shared_nodes() {
+  const auto& st = stencils<Shape>();
+  const auto& P = particles_;
+  const auto& G = grid_;
+  shared_.clear(G.node_count());
+  std::atomic<int> overflow{-1};
+  schedule_.for_each([&](int p) {
+    const int b = P.body[p];
+    const int f = field_of_body_[b];
+    if (body_rigid_[b]) {
+      int base = 0;
+      for (int d = 0; d < Dim; ++d) {
+        const int c = std::clamp(static_cast<int>(std::floor((P.x[p][d] - G.origin()[d]) / G.cell())), 0, G.cells(d) - 1);
+        base += c * G.stride(d);
+      }
+      for (int corner = 0; corner < (1 << Dim); ++corner) {
+        int i = base;
+        for (int d = 0; d < Dim; ++d)
+          if (corner >> d & 1) i += G.stride(d);
+        if (!shared_.mark(i, f)) overflow.store(i, std::memory_order_relaxed);
+      }
+    } else {
+      for_each_node(st[p], G, [&](int i, double, const Vec<Dim>&) {
+        if (!shared_.mark(i, f)) overflow.store(i, std::memory_order_relaxed);
+      });
+    }
+  });
+  if (const int i = overflow.load(); i >= 0) {
+    std::ostringstream os;
+    os << "step " << steps_ << " (t = " << time_ << " s): more than " << SharedNodes<Dim>::kSlots
+       << " contact fields (rigid bodies and bodies in contact pairs) meet at the node at "
+       << format_point<Dim>(grid_.node_position(i));
+    throw SimulationError(os.str());
+  }
+  shared_.build();
+  slot_reaction_.assign(shared_.mass.size(), Vec<Dim>::Zero());
+}
+
+template <int Dim>
+template <class Shape, bool Multi>
 void Model<Dim>::particles_to_grid() {
   const auto& st = stencils<Shape>();
   const Vec<Dim> g = settings_.gravity;
   auto& P = particles_;
   auto& G = grid_;
+  auto& S = shared_;
   schedule_.for_each([&](int p) {
+    [[maybe_unused]] int f = 0;
+    if constexpr (Multi) {
+      const int b = P.body[p];
+      f = field_of_body_[b];
+      if (body_rigid_[b]) {
+        // Only the rigid body's own slots: weights N V for Eq. 9 and the gradient for contact normals.
+        const double w = P.volume[p];
+        const Vec<Dim> wv = w * P.v[p];
+        for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+          const int k = S.index(i);
+          const int s = k >= 0 ? S.slot(k, f) : -1;
+          if (s < 0) return;
+          S.mass[s] += N * w;
+          S.momentum[s] += N * wv;
+          S.gradient[s] += w * dN;
+        });
+        return;
+      }
+    }
     const double m = P.mass[p];
     const Vec<Dim> mv = m * P.v[p];
     const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
     const Vec<Dim> mg = m * g;
     for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+      const Vec<Dim> force = N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
       G.mass[i] += N * m;
       G.momentum[i] += N * mv;
-      G.force[i] += N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
+      G.force[i] += force;
+      if constexpr (Multi) {
+        const int k = S.index(i);
+        if (k < 0) return;
+        const int s = S.slot(k, f);
+        S.mass[s] += N * m;
+        S.momentum[s] += N * mv;
+        S.force[s] += force;
+        S.gradient[s] += m * dN;
+      }
     });
   });
 }
@@ -291,25 +495,120 @@ void Model<Dim>::update_nodal_velocities() {
   }
 }
 
+// Each field's own velocity at the shared nodes: a rigid field's the weighted average of its
+// particles' (the paper's Eq. 9), a deformable field's from its momentum and force.
+template <int Dim>
+void Model<Dim>::update_shared_velocities() {
+  auto& S = shared_;
+  const int count = S.count();
+  const double dt = dt_, eps = mass_threshold_;
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < count; ++k)
+    for (int j = 0; j < S.fields(k); ++j) {
+      const int s = k * SharedNodes<Dim>::kSlots + j;
+      S.acceleration[s].setZero();
+      S.velocity[s].setZero();
+      if (rules_.rigid(S.field_of_slot(s))) {
+        if (S.mass[s] > 0.0) S.velocity[s] = S.momentum[s] / S.mass[s];
+      } else if (S.mass[s] > eps) {
+        S.acceleration[s] = S.force[s] / S.mass[s];
+        S.velocity[s] = S.momentum[s] / S.mass[s] + dt * S.acceleration[s];
+      }
+    }
+}
+
+// Contact at every shared node, then the grid fixities on each deformable field. After the force
+// update the accelerations are rebuilt from the corrected velocities (so FLIP sees the correction)
+// and the force each rigid body exerts is summed.
+template <int Dim>
+void Model<Dim>::resolve_shared_nodes(VelocityStage stage) {
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
+  auto& S = shared_;
+  const auto& G = grid_;
+  const int count = S.count();
+  const bool updated = stage == VelocityStage::Updated;
+  const double dt = dt_, eps = mass_threshold_, h = grid_.cell();
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < count; ++k) {
+    NodeFields<Dim> nf;
+    nf.count = S.fields(k);
+    for (int j = 0; j < nf.count; ++j) {
+      const int s = k * kSlots + j;
+      nf.field[j] = S.field_of_slot(s);
+      nf.mass[j] = S.mass[s];
+      nf.gradient[j] = S.gradient[s];
+      nf.velocity[j] = S.velocity[s];
+    }
+    Vec<Dim> force_on[kSlots];
+    for (auto& f : force_on) f.setZero();
+    resolve_contact<Dim>(nf, rules_, eps, h, updated ? dt : 0.0, force_on);
+    const unsigned mask = G.fixity(S.node(k));
+    for (int j = 0; j < nf.count; ++j) {
+      const int s = k * kSlots + j;
+      if (rules_.rigid(nf.field[j])) {
+        if (updated) slot_reaction_[s] = force_on[j];
+        continue;
+      }
+      if (!(S.mass[s] > eps)) continue;
+      S.velocity[s] = nf.velocity[j];
+      for (int d = 0; d < Dim; ++d)
+        if (mask >> d & 1) S.velocity[s][d] = 0.0;
+      if (updated) S.acceleration[s] = (S.velocity[s] - S.momentum[s] / S.mass[s]) / dt;
+    }
+  }
+  if (!updated) return;
+  // The force of each rigid body on the deformable ones, summed in a fixed order.
+  for (int s = 0, n = static_cast<int>(slot_reaction_.size()); s < n; ++s) {
+    if (s % kSlots >= S.fields(s / kSlots)) continue;
+    const int f = S.field_of_slot(s);
+    if (!rules_.rigid(f)) continue;
+    for (std::size_t b = 0; b < bodies_.size(); ++b)
+      if (field_of_body_[b] == f) motion_[b].force += slot_reaction_[s];
+  }
+  for (std::size_t b = 0; b < bodies_.size(); ++b)
+    if (bodies_[b].rigid) motion_[b].impulse += dt * motion_[b].force;
+}
+
 template <int Dim>
 void Model<Dim>::constrain_velocities(VelocityStage stage) {
+  if (rules_.fields() > 1) resolve_shared_nodes(stage);
   grid_.apply_fixities(grid_.velocity);
   if (stage == VelocityStage::Updated) grid_.apply_fixities(grid_.acceleration);
   for (auto& f : fixes_) f->nodal_velocities(*this, stage);
 }
 
 template <int Dim>
-template <class Shape>
+template <class Shape, bool Multi>
 void Model<Dim>::grid_to_particles() {
   const auto& st = stencils<Shape>();
   const int n = static_cast<int>(particles_.size());
   const double dt = dt_, alpha = settings_.flip;
   auto& P = particles_;
   const auto& G = grid_;
+  const auto& S = shared_;
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
+    [[maybe_unused]] int f = 0;
+    if constexpr (Multi) {
+      const int b = P.body[p];
+      if (body_rigid_[b]) {  // prescribed: moves at v_R, whatever the grid says
+        P.x[p] += dt * P.v[p];
+        P.u[p] += dt * P.v[p];
+        continue;
+      }
+      f = field_of_body_[b];
+    }
     Vec<Dim> a = Vec<Dim>::Zero(), vl = Vec<Dim>::Zero();
     for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
+      if constexpr (Multi) {
+        const int k = S.index(i);
+        if (k >= 0) {  // the particle's own field where fields meet
+          const int s = S.slot(k, f);
+          a += N * S.acceleration[s];
+          vl += N * S.velocity[s];
+          return;
+        }
+      }
       a += N * G.acceleration[i];
       vl += N * G.velocity[i];
     });
@@ -320,38 +619,86 @@ void Model<Dim>::grid_to_particles() {
 }
 
 template <int Dim>
-template <class Shape>
+template <class Shape, bool Multi>
 void Model<Dim>::remap_momentum() {
   const auto& st = stencils<Shape>();
   auto& P = particles_;
   auto& G = grid_;
+  auto& S = shared_;
   const int nn = G.node_count();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < nn; ++i) G.momentum[i].setZero();
+  if constexpr (Multi) {
+    // Rigid slots keep their prescribed velocity; deformable ones are re-mapped.
+    for (std::size_t s = 0; s < S.momentum.size(); ++s)
+      if (s % SharedNodes<Dim>::kSlots < static_cast<std::size_t>(S.fields(static_cast<int>(s / SharedNodes<Dim>::kSlots))) &&
+          !rules_.rigid(S.field_of_slot(static_cast<int>(s))))
+        S.momentum[s].setZero();
+  }
   schedule_.for_each([&](int p) {
+    [[maybe_unused]] int f = 0;
+    if constexpr (Multi) {
+      if (body_rigid_[P.body[p]]) return;
+      f = field_of_body_[P.body[p]];
+    }
     const Vec<Dim> mv = P.mass[p] * P.v[p];
-    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) { G.momentum[i] += N * mv; });
+    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
+      G.momentum[i] += N * mv;
+      if constexpr (Multi) {
+        const int k = S.index(i);
+        if (k >= 0) S.momentum[S.slot(k, f)] += N * mv;
+      }
+    });
   });
   const double eps = mass_threshold_;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < nn; ++i)
     G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
+  if constexpr (Multi) {
+    const int count = S.count();
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < count; ++k)
+      for (int j = 0; j < S.fields(k); ++j) {
+        const int s = k * SharedNodes<Dim>::kSlots + j;
+        if (rules_.rigid(S.field_of_slot(s))) continue;
+        S.velocity[s] = S.mass[s] > eps ? Vec<Dim>(S.momentum[s] / S.mass[s]) : Vec<Dim>::Zero();
+      }
+  }
 }
 
 template <int Dim>
-template <class Shape>
+template <class Shape, bool Multi>
 void Model<Dim>::update_stress() {
   const auto& st = stencils<Shape>();
   const int n = static_cast<int>(particles_.size());
   const double dt = dt_;
   auto& P = particles_;
   const auto& G = grid_;
+  const auto& S = shared_;
   strain_increment_.resize(n);
   spin_.resize(n);
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
+    [[maybe_unused]] int f = 0;
+    if constexpr (Multi) {
+      if (body_rigid_[P.body[p]]) {  // no strain, no stress
+        strain_increment_[p] = Sym::Zero();
+        spin_[p].setZero();
+        continue;
+      }
+      f = field_of_body_[P.body[p]];
+    }
     Mat<Dim> L = Mat<Dim>::Zero();  // velocity gradient, L_ab = dv_a / dx_b
-    for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) { L.noalias() += G.velocity[i] * dN.transpose(); });
+    for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) {
+      if constexpr (Multi) {
+        const int k = S.index(i);
+        if (k >= 0) {
+          L.noalias() += S.velocity[S.slot(k, f)] * dN.transpose();
+          return;
+        }
+      }
+      L.noalias() += G.velocity[i] * dN.transpose();
+    });
     const Mat<Dim> dL = dt * L;
     strain_increment_[p] = to_voigt(embed<Dim>(Mat<Dim>(0.5 * (dL + dL.transpose()))));
     const Mat3 w = embed<Dim>(Mat<Dim>(0.5 * (dL - dL.transpose())));
@@ -361,6 +708,8 @@ void Model<Dim>::update_stress() {
   if (average) accumulate_cell_dilation();
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
+    if constexpr (Multi)
+      if (body_rigid_[P.body[p]]) continue;
     Sym& de = strain_increment_[p];
     if (average) {
       // The cell's volume-weighted mean volumetric increment replaces the particle's (B-bar);
@@ -402,7 +751,9 @@ void Model<Dim>::accumulate_cell_dilation() {
   cell_volume_.assign(cells, 0.0);
   cell_dilation_.assign(cells, 0.0);
   const auto& P = particles_;
+  const bool rigid_bodies = std::any_of(body_rigid_.begin(), body_rigid_.end(), [](char r) { return r; });
   schedule_.for_each_in_own_cell([&](int p) {
+    if (rigid_bodies && body_rigid_[P.body[p]]) return;  // no strain of their own
     cell_volume_[cell_of_[p]] += P.volume[p];
     cell_dilation_[cell_of_[p]] += P.volume[p] * trace(strain_increment_[p]);
   });
@@ -498,7 +849,8 @@ std::size_t Model<Dim>::index_of(int id) const {
 template <int Dim>
 double Model<Dim>::kinetic_energy() const {
   double e = 0.0;
-  for (std::size_t p = 0; p < particles_.size(); ++p) e += 0.5 * particles_.mass[p] * particles_.v[p].squaredNorm();
+  for (std::size_t p = 0; p < particles_.size(); ++p)
+    if (!bodies_[particles_.body[p]].rigid) e += 0.5 * particles_.mass[p] * particles_.v[p].squaredNorm();
   return e;
 }
 
@@ -506,6 +858,7 @@ template <int Dim>
 double Model<Dim>::strain_energy() const {
   double e = 0.0;
   for (std::size_t p = 0; p < particles_.size(); ++p) {
+    if (bodies_[particles_.body[p]].rigid) continue;
     const Material& m = *materials_[particles_.material[p]];
     const Sym& s = particles_.stress[p];
     const double tr = s[0] + s[1] + s[2], mean = tr / 3.0;
@@ -531,7 +884,8 @@ Vec<Dim> Model<Dim>::centroid(int body) const {
 template <int Dim>
 Vec<Dim> Model<Dim>::momentum() const {
   Vec<Dim> s = Vec<Dim>::Zero();
-  for (std::size_t p = 0; p < particles_.size(); ++p) s += particles_.mass[p] * particles_.v[p];
+  for (std::size_t p = 0; p < particles_.size(); ++p)
+    if (!bodies_[particles_.body[p]].rigid) s += particles_.mass[p] * particles_.v[p];
   return s;
 }
 

@@ -7,11 +7,14 @@
 #include <string>
 #include <vector>
 
+#include "contact.hpp"
 #include "fix.hpp"
 #include "grid.hpp"
 #include "material.hpp"
 #include "particles.hpp"
+#include "rigid_body.hpp"
 #include "scatter_schedule.hpp"
+#include "shared_nodes.hpp"
 #include "shape_function.hpp"
 #include "stencil.hpp"
 #include "types.hpp"
@@ -42,6 +45,12 @@ struct Body {
   std::string name;
   int ppc = 2;         // particles per cell per axis at creation
   bool rigid = false;  // prescribed-velocity particles (shaking-table box, sliding surface)
+  int material = -1;   // a rigid body's stand-in material (RigidMaterial)
+};
+
+struct ContactPair {
+  int a, b;
+  double friction;  // Coulomb mu >= 0
 };
 
 template <int Dim>
@@ -51,13 +60,29 @@ class Model {
 
   // --- building ---
   int add_material(std::shared_ptr<const Material> material);
+  // A deformable body, or a rigid one at rest (density 1000 kg/m^3 for show).
   int add_body(const std::string& name, int ppc, bool rigid = false);
+  // A rigid body of prescribed-velocity particles following `velocity` (m/s per axis, histories read
+  // at the phase time); `density` only gives its particles a mass to show.
+  int add_rigid_body(const std::string& name, int ppc, double density,
+                     const std::array<std::shared_ptr<const History>, Dim>& velocity);
+  void set_rigid_velocity(int body, const std::array<std::shared_ptr<const History>, Dim>& velocity);
+  // Frictional contact between two bodies (Bardenhagen). Bodies without a declared pair share one
+  // velocity field where they meet (no slip, no separation).
+  void add_contact(int a, int b, double friction);
   // Fills every cell sub-point (ppc per axis) that lies inside `inside` and the box [lo, hi]
-  // with a particle of `body` and `material`. Returns the number of particles added.
+  // with a particle of `body` and `material` (for a rigid body, -1: its own). Returns the number of
+  // particles added.
   std::size_t fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,
                    const std::function<bool(const Vec<Dim>&)>& inside);
   std::size_t fill_box(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi);
   void add_fix(std::shared_ptr<Fix<Dim>> fix);
+
+  // --- phases ---
+  // Starts a calculation phase now: histories of rigid bodies are read at the time since this call,
+  // and rigid bodies stay at rest unless `rigid_bodies_move`.
+  void begin_phase(bool rigid_bodies_move);
+  double phase_time() const { return time_ - phase_start_; }
 
   // --- running ---
   // One explicit step, no longer than dt_max.
@@ -72,6 +97,11 @@ class Model {
   Particles<Dim>& particles() { return particles_; }
   const Particles<Dim>& particles() const { return particles_; }
   const std::vector<Body>& bodies() const { return bodies_; }
+  const std::vector<ContactPair>& contacts() const { return contacts_; }
+  const RigidMotion<Dim>& rigid_motion(int body) const { return motion_.at(body); }
+  // Per-field nodal data where contact fields meet (empty when every body shares one field).
+  SharedNodes<Dim>& shared_nodes() { return shared_; }
+  const SharedNodes<Dim>& shared_nodes() const { return shared_; }
   const Material& material(int index) const { return *materials_[index]; }
   int material_count() const { return static_cast<int>(materials_.size()); }
   double time() const { return time_; }
@@ -88,6 +118,7 @@ class Model {
   // Current index of the particle created as number `id` (particles are reordered by sorting).
   std::size_t index_of(int id) const;
 
+  // Energies and momentum of the deformable bodies (rigid ones have infinite mass).
   double kinetic_energy() const;
   // Elastic strain energy recovered from the stresses, sum V [(tr s)^2 / 18K + dev s : dev s / 4G].
   double strain_energy() const;
@@ -99,16 +130,24 @@ class Model {
   void step_with(double dt);
   template <class Shape>
   void compute_stencils();
-  template <class Shape>
+  template <class Shape, bool Multi>
   void particles_to_grid();
   void update_nodal_velocities();
   void constrain_velocities(VelocityStage stage);
-  template <class Shape>
+  template <class Shape, bool Multi>
   void grid_to_particles();
-  template <class Shape>
+  template <class Shape, bool Multi>
   void remap_momentum();
-  template <class Shape>
+  template <class Shape, bool Multi>
   void update_stress();
+  // Contact fields: which bodies get their own nodal velocity, and how pairs interact.
+  void rebuild_contact_fields();
+  int new_body(const std::string& name, int ppc, bool rigid);
+  void assign_rigid_velocities();
+  template <class Shape>
+  void mark_shared_nodes();
+  void update_shared_velocities();
+  void resolve_shared_nodes(VelocityStage stage);
   void accumulate_cell_dilation();
   // Index of the cell holding x, clamped to the grid; the slab axis varies slowest, so each scatter
   // slab is a contiguous range of cells (and, after sorting, of particles).
@@ -128,6 +167,16 @@ class Model {
   std::vector<double> p_wave_modulus_;  // per material
   std::vector<Body> bodies_;
   std::vector<std::shared_ptr<Fix<Dim>>> fixes_;
+  std::vector<RigidMotion<Dim>> motion_;  // per body; used by rigid ones
+  std::vector<ContactPair> contacts_;
+  std::vector<int> field_of_body_;
+  std::vector<char> body_rigid_;
+  ContactRules rules_;
+  bool fields_valid_ = false;
+  SharedNodes<Dim> shared_;
+  std::vector<Vec<Dim>> slot_reaction_;  // per slot: force a rigid field gave this step
+  double phase_start_ = 0.0;
+  bool rigid_bodies_move_ = true;
 
   // Per-step scratch.
   std::vector<Stencil<Dim, LinearShape::K>> linear_stencils_;

@@ -1,0 +1,38 @@
+#include "shared_nodes.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+void SharedNodes<Dim>::clear(int node_count) {
+  std::array<std::int16_t, kSlots> empty;
+  empty.fill(-1);
+  present_.assign(node_count, empty);
+  index_.assign(node_count, -1);
+}
+
+template <int Dim>
+void SharedNodes<Dim>::build() {
+  node_.clear();
+  fields_.clear();
+  const int n = static_cast<int>(present_.size());
+  for (int i = 0; i < n; ++i) {
+    if (present_[i][1] < 0) continue;  // one field or none: the common grid fields serve
+    int c = 2;
+    while (c < kSlots && present_[i][c] >= 0) ++c;
+    index_[i] = static_cast<int>(node_.size());
+    node_.push_back(i);
+    fields_.push_back(c);
+  }
+  const std::size_t slots = node_.size() * kSlots;
+  mass.assign(slots, 0.0);
+  momentum.assign(slots, Vec<Dim>::Zero());
+  force.assign(slots, Vec<Dim>::Zero());
+  gradient.assign(slots, Vec<Dim>::Zero());
+  velocity.assign(slots, Vec<Dim>::Zero());
+  acceleration.assign(slots, Vec<Dim>::Zero());
+}
+
+template class SharedNodes<2>;
+template class SharedNodes<3>;
+
+}  // namespace seismpm

@@ -1,0 +1,68 @@
+// Per-field nodal data where contact fields meet: only the grid nodes that particles of two or more
+// contact fields touch get their own slots (up to kSlots fields each), so memory grows with the
+// contact interface, not with the number of bodies times the grid.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "types.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+class SharedNodes {
+ public:
+  static constexpr int kSlots = 4;
+
+  // Forgets every node's fields (start of a step).
+  void clear(int node_count);
+  // Records that `field` touches grid node `node`. Race-free when no two threads mark the same node
+  // (the coloured scatter). Returns false when the node has kSlots other fields already.
+  bool mark(int node, int field) {
+    auto& p = present_[node];
+    for (int j = 0; j < kSlots; ++j) {
+      if (p[j] == field) return true;
+      if (p[j] < 0) {
+        p[j] = static_cast<std::int16_t>(field);
+        return true;
+      }
+    }
+    return false;
+  }
+  // Lists the nodes with two or more fields and zeroes their slots.
+  void build();
+
+  int count() const { return static_cast<int>(node_.size()); }
+  // Shared-node index of grid node i, or -1.
+  int index(int node) const { return index_[node]; }
+  int node(int k) const { return node_[k]; }
+  int fields(int k) const { return fields_[k]; }
+  // Slot of shared node k that belongs to `field`, or -1.
+  int slot(int k, int field) const {
+    const auto& p = present_[node_[k]];
+    for (int j = 0; j < kSlots; ++j)
+      if (p[j] == field) return k * kSlots + j;
+    return -1;
+  }
+  int field_of_slot(int s) const { return present_[node_[s / kSlots]][s % kSlots]; }
+
+  // Per slot (shared node k, slot j at k * kSlots + j).
+  std::vector<double> mass;            // deformable: sum N m; rigid: sum N V
+  std::vector<Vec<Dim>> momentum;      // deformable: sum N m v; rigid: sum N V v
+  std::vector<Vec<Dim>> force;         // deformable: internal + external
+  std::vector<Vec<Dim>> gradient;      // deformable: sum m grad N; rigid: sum V grad N
+  std::vector<Vec<Dim>> velocity;
+  std::vector<Vec<Dim>> acceleration;
+
+ private:
+  std::vector<std::array<std::int16_t, kSlots>> present_;  // per grid node, -1 = empty
+  std::vector<int> index_;                                  // per grid node
+  std::vector<int> node_, fields_;                          // per shared node
+};
+
+extern template class SharedNodes<2>;
+extern template class SharedNodes<3>;
+
+}  // namespace seismpm
