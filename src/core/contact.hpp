@@ -37,10 +37,12 @@ class ContactRules {
   std::vector<char> rigid_;
 };
 
-// The fields at one shared node. For a deformable field: mass, momentum and mass gradient; velocity
-// is the field's own nodal velocity, corrected in place. For a rigid field: `mass` is the weight sum
-// sum N V (Eq. 9), `velocity` the prescribed nodal velocity and `gradient` sum V grad N, which points
-// into the rigid body; its velocity is never changed.
+// The fields at one shared node. For a deformable field: mass, the sum m_p grad N_ip and the field's
+// own nodal velocity, corrected in place. For a rigid field: `mass` is the weight sum N V (Eq. 9),
+// `gradient` sum V_p grad N_ip and `velocity` the prescribed nodal velocity, never changed.
+// grad N_ip is the derivative with respect to the particle's position, so these sums point OUT of the
+// field's material at the node (the nodal mass grows as the node moves into the body, the opposite
+// way): they are outward normals. Taking them as pointing inward flips every approach test.
 template <int Dim>
 struct NodeFields {
   static constexpr int kMax = 4;
@@ -110,7 +112,7 @@ void resolve_contact(NodeFields<Dim>& n, const ContactRules& rules, double min_m
     if (!active(a) || group[a] != a) continue;
     for (int b = a + 1; b < n.count; ++b) {
       if (!active(b) || group[b] != b) continue;
-      const Vec<Dim> dg = gg[b] - gg[a];  // out of A toward B, the same line for both
+      const Vec<Dim> dg = gg[a] - gg[b];  // out of A toward B, the same line for both
       const double len = dg.norm();
       if (!(len * cell > 1e-6 * std::min(gm[a], gm[b]))) continue;  // no direction to speak of
       const Vec<Dim> normal = dg / len;
@@ -144,13 +146,14 @@ void resolve_contact(NodeFields<Dim>& n, const ContactRules& rules, double min_m
       if (glued) {
         dv = v_r - gv[a];
       } else {
-        // The rigid body's own gradient gives the cleanest normal; deep inside it, the soil's.
+        // From the soil toward the rigid body: against the rigid body's outward normal, which is the
+        // cleanest; deep inside it, along the soil's own outward normal.
         Vec<Dim> normal;
         const double slen = gg[a].norm();
         if (rigid_normal)
-          normal = n.gradient[r] / rlen;
+          normal = -n.gradient[r] / rlen;
         else if (slen * cell > 1e-6 * gm[a])
-          normal = -gg[a] / slen;
+          normal = gg[a] / slen;
         else
           normal.setZero();
         dv = normal.squaredNorm() > 0.0 ? contact_detail::correction<Dim>(gv[a], v_r, normal, mu) : Vec<Dim>(v_r - gv[a]);

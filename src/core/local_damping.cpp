@@ -33,16 +33,27 @@ void LocalDamping<Dim>::nodal_forces(Model<Dim>& model) {
       g.force[i][d] -= alpha * std::abs(g.force[i][d]) * s;
     }
   }
-  // Each contact field's own forces where fields meet (rigid fields carry none).
+  // Each contact field's own forces where fields meet; not where a rigid body is present: there the
+  // out-of-balance force is what the contact must carry (damping it first would under-read the normal
+  // force, the friction limit and the reaction), and the rigid body fixes the motion anyway.
   auto& sh = model.shared_nodes();
-  const int slots = static_cast<int>(sh.force.size());
+  const auto& rules = model.contact_rules();
+  const int count = sh.count();
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
 #pragma omp parallel for schedule(static)
-  for (int k = 0; k < slots; ++k)
-    for (int d = 0; d < Dim; ++d) {
-      const double v = sh.momentum[k][d];
-      const double s = (v > 0.0) - (v < 0.0);
-      sh.force[k][d] -= alpha * std::abs(sh.force[k][d]) * s;
+  for (int k = 0; k < count; ++k) {
+    bool rigid = false;
+    for (int j = 0; j < sh.fields(k); ++j) rigid = rigid || rules.rigid(sh.field_of_slot(k * kSlots + j));
+    if (rigid) continue;
+    for (int j = 0; j < sh.fields(k); ++j) {
+      const int s = k * kSlots + j;
+      for (int d = 0; d < Dim; ++d) {
+        const double v = sh.momentum[s][d];
+        const double sign = (v > 0.0) - (v < 0.0);
+        sh.force[s][d] -= alpha * std::abs(sh.force[s][d]) * sign;
+      }
     }
+  }
 }
 
 template class LocalDamping<2>;

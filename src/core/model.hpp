@@ -99,6 +99,8 @@ class Model {
   const std::vector<Body>& bodies() const { return bodies_; }
   const std::vector<ContactPair>& contacts() const { return contacts_; }
   const RigidMotion<Dim>& rigid_motion(int body) const { return motion_.at(body); }
+  // How contact fields interact, as of the last step.
+  const ContactRules& contact_rules() const { return rules_; }
   // Per-field nodal data where contact fields meet (empty when every body shares one field).
   SharedNodes<Dim>& shared_nodes() { return shared_; }
   const SharedNodes<Dim>& shared_nodes() const { return shared_; }

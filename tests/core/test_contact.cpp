@@ -1,0 +1,324 @@
+// Multi-body frictional contact (Bardenhagen) and prescribed-velocity rigid bodies: the correction at
+// one node against its rules, and whole bodies against closed-form answers.
+#include <catch2/catch.hpp>
+
+#include "cases/moving_base_block.hpp"
+#include "core/contact.hpp"
+#include "core/error.hpp"
+#include "core/model.hpp"
+#include "materials/linear_elastic.hpp"
+
+using namespace seismpm;
+
+namespace {
+
+// Two deformable fields 1 and 2 (and a rigid field 3) at one node.
+ContactRules rules(double mu) {
+  ContactRules r;
+  r.reset(4);
+  r.set_rigid(3, true);
+  r.set_friction(1, 2, mu);
+  r.set_friction(1, 3, mu);
+  return r;
+}
+
+NodeFields<2> pair(const Vec<2>& va, const Vec<2>& vb, double ma = 2.0, double mb = 1.0) {
+  NodeFields<2> n;
+  n.count = 2;
+  n.field[0] = 1, n.field[1] = 2;
+  n.mass[0] = ma, n.mass[1] = mb;
+  n.gradient[0] = Vec<2>(0.0, -5.0);  // A's mass lies above the node (outward normal down) ...
+  n.gradient[1] = Vec<2>(0.0, 4.0);   // ... B's below: the normal out of A toward B is -y
+  n.velocity[0] = va, n.velocity[1] = vb;
+  return n;
+}
+
+Vec<2> momentum(const NodeFields<2>& n) {
+  Vec<2> p = Vec<2>::Zero();
+  for (int j = 0; j < n.count; ++j) p += n.mass[j] * n.velocity[j];
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("contact at a node: approach, separation, stick and slip", "[core][contact]") {
+  SECTION("approaching bodies get one normal velocity; momentum is kept") {
+    auto n = pair(Vec<2>(0.0, -1.0), Vec<2>(0.0, 0.5));
+    const Vec<2> before = momentum(n);
+    resolve_contact<2>(n, rules(0.0), 1e-12, 0.1, 0.0, nullptr);
+    CHECK(n.velocity[0][1] == Approx(n.velocity[1][1]).epsilon(1e-14));
+    CHECK(n.velocity[0][1] == Approx((2.0 * -1.0 + 1.0 * 0.5) / 3.0));
+    CHECK((momentum(n) - before).norm() < 1e-14);
+  }
+  SECTION("separating bodies keep their own velocities") {
+    auto n = pair(Vec<2>(0.3, 1.0), Vec<2>(-0.2, -0.5));
+    resolve_contact<2>(n, rules(1.0), 1e-12, 0.1, 0.0, nullptr);
+    CHECK(n.velocity[0] == Vec<2>(0.3, 1.0));
+    CHECK(n.velocity[1] == Vec<2>(-0.2, -0.5));
+  }
+  SECTION("smooth: the tangential velocities are untouched") {
+    auto n = pair(Vec<2>(1.0, -1.0), Vec<2>(-2.0, 0.0));
+    resolve_contact<2>(n, rules(0.0), 1e-12, 0.1, 0.0, nullptr);
+    CHECK(n.velocity[0][0] == 1.0);
+    CHECK(n.velocity[1][0] == -2.0);
+  }
+  SECTION("slip: the tangential change is mu times the normal one") {
+    const double mu = 0.2;
+    auto n = pair(Vec<2>(3.0, -1.0), Vec<2>(0.0, 0.0));
+    const Vec<2> v0 = n.velocity[0], p0 = momentum(n);
+    resolve_contact<2>(n, rules(mu), 1e-12, 0.1, 0.0, nullptr);
+    const Vec<2> dv = n.velocity[0] - v0;
+    CHECK(-dv[0] == Approx(mu * dv[1]).epsilon(1e-14));  // slows along x by mu |dv_n|
+    CHECK(n.velocity[0][1] == Approx(n.velocity[1][1]).epsilon(1e-14));
+    CHECK((momentum(n) - p0).norm() < 1e-14);
+  }
+  SECTION("stick: with enough friction both move with the centre of mass") {
+    auto n = pair(Vec<2>(0.1, -1.0), Vec<2>(0.0, 0.0));
+    const Vec<2> v_cm = momentum(n) / 3.0;
+    resolve_contact<2>(n, rules(1.0), 1e-12, 0.1, 0.0, nullptr);
+    CHECK((n.velocity[0] - v_cm).norm() < 1e-14);
+    CHECK((n.velocity[1] - v_cm).norm() < 1e-14);
+  }
+  SECTION("without a declared pair the fields are glued, even when separating") {
+    ContactRules glued;
+    glued.reset(3);
+    auto n = pair(Vec<2>(0.0, 1.0), Vec<2>(0.0, -1.0));
+    const Vec<2> v_cm = momentum(n) / 3.0;
+    resolve_contact<2>(n, glued, 1e-12, 0.1, 0.0, nullptr);
+    CHECK((n.velocity[0] - v_cm).norm() < 1e-14);
+    CHECK((n.velocity[1] - v_cm).norm() < 1e-14);
+  }
+  SECTION("a rigid field keeps its velocity and reports the force it gave") {
+    NodeFields<2> n;
+    n.count = 2;
+    n.field[0] = 1, n.field[1] = 3;
+    n.mass[0] = 2.0, n.mass[1] = 0.01;      // soil mass; rigid weight sum N V
+    n.gradient[0] = Vec<2>(0.0, -5.0);
+    n.gradient[1] = Vec<2>(0.0, 0.1);       // rigid material below (outward normal up)
+    n.velocity[0] = Vec<2>(0.0, -0.4);      // soil falling onto ...
+    n.velocity[1] = Vec<2>(2.0, 0.0);       // ... a base sliding at 2 m/s
+    Vec<2> force[4] = {Vec<2>::Zero(), Vec<2>::Zero(), Vec<2>::Zero(), Vec<2>::Zero()};
+    const double mu = 0.3, dt = 1e-3;
+    resolve_contact<2>(n, rules(mu), 1e-12, 0.1, dt, force);
+    CHECK(n.velocity[1] == Vec<2>(2.0, 0.0));
+    CHECK(n.velocity[0][1] == Approx(0.0).margin(1e-15));   // no penetration
+    CHECK(n.velocity[0][0] == Approx(mu * 0.4).epsilon(1e-14));  // dragged by mu |dv_n|
+    CHECK(force[1][1] == Approx(2.0 * 0.4 / dt).epsilon(1e-14));
+    CHECK(force[1][0] == Approx(2.0 * mu * 0.4 / dt).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("moving base: a smooth base leaves the block behind", "[core][contact][rigid]") {
+  cases::MovingBaseBlock c;
+  c.friction = 0.0;
+  auto b = c.build();
+  c.settle_and_start(b);
+  const Vec<2> x0 = b.model->centroid(b.block);
+  double vmax = 0.0;
+  while (b.model->phase_time() < 0.8) {
+    b.model->step(0.8 - b.model->phase_time());
+    const auto& P = b.model->particles();
+    double p = 0.0, m = 0.0;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.body[i] == b.block) p += P.mass[i] * P.v[i][0], m += P.mass[i];
+    vmax = std::max(vmax, std::abs(p / m));
+  }
+  CAPTURE(vmax, b.model->centroid(b.block) - x0);
+  CHECK(vmax < 1e-3);
+  CHECK(std::abs(b.model->centroid(b.block)[0] - x0[0]) < 1e-3);
+  CHECK(b.model->centroid(b.base)[0] == Approx(-0.25 + 2.0 * 0.8).epsilon(1e-9));
+}
+
+TEST_CASE("moving base: Coulomb friction accelerates the block at mu g, then it rides along",
+          "[core][contact][rigid][verification]") {
+  cases::MovingBaseBlock c;
+  c.friction = 0.3;
+  auto b = c.build();
+  c.settle_and_start(b);
+  const double x0 = b.model->centroid(b.block)[0];
+  const double t_star = c.base_speed / (c.friction * c.gravity);  // 0.680 s
+  double worst = 0.0;
+  for (double t : {0.2, 0.4, 0.6, t_star, 0.8, 1.0}) {
+    b.model->run(t - b.model->phase_time());
+    const double u = b.model->centroid(b.block)[0] - x0;
+    const double exact = c.exact_displacement(t);
+    CAPTURE(t, u, exact);
+    worst = std::max(worst, std::abs(u - exact) / exact);
+    CHECK(std::abs(u - exact) < 0.03 * exact);
+  }
+  WARN("largest relative error of the centroid displacement: " << worst);
+}
+
+TEST_CASE("moving base: without contact the block is carried along", "[core][contact][rigid]") {
+  cases::MovingBaseBlock c;
+  c.contact = cases::BaseContact::None;
+  auto b = c.build();
+  c.settle_and_start(b);
+  const double x0 = b.model->centroid(b.block)[0];
+  b.model->run(0.5);
+  // The bottom moves with the base at once; shear waves make the rest oscillate about it.
+  const double u = b.model->centroid(b.block)[0] - x0;
+  CAPTURE(u);
+  CHECK(u == Approx(2.0 * 0.5).epsilon(0.05));
+}
+
+TEST_CASE("a rigid base carries the weight of a block: reaction = weight", "[core][contact][rigid]") {
+  for (auto mode : {cases::BaseContact::None, cases::BaseContact::Friction}) {
+    cases::MovingBaseBlock c;
+    c.contact = mode;
+    auto b = c.build();
+    b.damping->set_alpha(0.7);
+    b.model->begin_phase(false);
+    b.model->run(0.5);
+    const Vec<2> impulse0 = b.model->rigid_motion(b.base).impulse;
+    b.model->run(0.1);
+    const Vec<2> mean = (b.model->rigid_motion(b.base).impulse - impulse0) / 0.1;
+    const double weight = c.unit_weight * 1.0;  // N per metre out of plane
+    CAPTURE(mean, weight);
+    CHECK(mean[1] == Approx(weight).epsilon(0.01));
+    CHECK(std::abs(mean[0]) < 1e-3 * weight);
+  }
+}
+
+namespace {
+
+// Two elastic blocks side by side, no gravity, no walls; A on [0, 0.5] and B on [0.5, 0.8] (one body
+// ends where the other starts, on a cell boundary), each with its own initial velocity.
+struct TwoBlocks {
+  std::unique_ptr<Model<2>> m;
+  int a, b;
+  TwoBlocks(double va, double vb, bool contact, ShapeKind shape = ShapeKind::Gimp) {
+    ModelSettings<2> s;
+    s.lower = Vec<2>(-1.0, -0.3);
+    s.upper = Vec<2>(2.0, 0.6);
+    s.cell = 0.1;
+    s.shape = shape;
+    m = std::make_unique<Model<2>>(s);
+    const int mat = m->add_material(std::make_shared<LinearElastic>(1000.0, 1e6, 0.3));
+    a = m->add_body("a", 2);
+    b = m->add_body("b", 2);
+    m->fill_box(a, mat, Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.3));
+    m->fill_box(b, mat, Vec<2>(0.5, 0.0), Vec<2>(0.8, 0.3));
+    if (contact) m->add_contact(a, b, 0.0);
+    auto& P = m->particles();
+    for (std::size_t p = 0; p < P.size(); ++p) P.v[p] = Vec<2>(P.body[p] == a ? va : vb, 0.0);
+  }
+  double velocity(int body) const {
+    const auto& P = m->particles();
+    double p = 0.0, mass = 0.0;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.body[i] == body) p += P.mass[i] * P.v[i][0], mass += P.mass[i];
+    return p / mass;
+  }
+  // Distance from A's rightmost particle to B's leftmost one.
+  double gap() const {
+    const auto& P = m->particles();
+    double right_a = -1e9, left_b = 1e9;
+    for (std::size_t i = 0; i < P.size(); ++i)
+      if (P.body[i] == a)
+        right_a = std::max(right_a, P.x[i][0]);
+      else
+        left_b = std::min(left_b, P.x[i][0]);
+    return left_b - right_a;
+  }
+  double max_stress() const {
+    double s = 0.0;
+    for (const auto& sig : m->particles().stress) s = std::max(s, sig.cwiseAbs().maxCoeff());
+    return s;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("bodies in contact pulled apart separate freely; glued ones do not", "[core][contact]") {
+  SECTION("contact: no tension across the interface") {
+    TwoBlocks t(-0.5, 0.5, true);
+    t.m->run(0.2);
+    CAPTURE(t.velocity(t.a), t.velocity(t.b), t.max_stress());
+    CHECK(t.velocity(t.a) == Approx(-0.5).epsilon(1e-9));
+    CHECK(t.velocity(t.b) == Approx(0.5).epsilon(1e-9));
+    CHECK(t.max_stress() < 1e-6);
+    CHECK(t.gap() == Approx(0.05 + 0.2 * 1.0).epsilon(1e-6));  // half a particle spacing + 0.2 s at 1 m/s
+  }
+  SECTION("no contact declared: one field, the bodies hold together") {
+    TwoBlocks t(-0.5, 0.5, false);
+    t.m->run(0.2);
+    CAPTURE(t.velocity(t.a), t.velocity(t.b), t.max_stress());
+    CAPTURE(t.gap());
+    CHECK(t.gap() < 0.06);  // the particles next to the interface stay at their spacing
+    CHECK(t.max_stress() > 1e3);
+  }
+}
+
+TEST_CASE("colliding bodies conserve momentum, bounce and separate", "[core][contact][verification]") {
+  const auto shape = GENERATE(ShapeKind::Gimp, ShapeKind::Linear);
+  TwoBlocks t(0.3, -0.6, true, shape);
+  const Vec<2> p0 = t.m->momentum();
+  double worst = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    t.m->run(0.02);
+    worst = std::max(worst, (t.m->momentum() - p0).norm() / p0.norm());
+  }
+  CAPTURE(worst, t.velocity(t.a), t.velocity(t.b));
+  CHECK(worst < 1e-10);
+  // After the collision A moves left relative to B: they separated.
+  CHECK(t.velocity(t.a) < t.velocity(t.b));
+}
+
+TEST_CASE("a rigid body leaving the grid stops the run, naming it", "[core][contact][rigid][failures]") {
+  cases::MovingBaseBlock c;
+  auto b = c.build();
+  b.model->set_rigid_velocity(b.base, {std::make_shared<ConstantHistory>(-50.0), std::make_shared<ConstantHistory>(0.0)});
+  try {
+    b.model->run(0.1);
+    FAIL("the run went on");
+  } catch (const SimulationError& e) {
+    const std::string what = e.what();
+    CAPTURE(what);
+    CHECK(what.find("rigid body 'base'") != std::string::npos);
+    CHECK(what.find("t = ") != std::string::npos);
+    CHECK(what.find("leave the grid") != std::string::npos);
+  }
+}
+
+TEST_CASE("contact declarations are checked", "[core][contact][errors]") {
+  ModelSettings<2> s;
+  Model<2> m(s);
+  const int a = m.add_body("a", 2), b = m.add_body("b", 2), r = m.add_body("r", 2, true), q = m.add_body("q", 2, true);
+  CHECK_THROWS_WITH(m.add_contact(a, b, -0.1), Catch::Contains("friction"));
+  CHECK_THROWS_WITH(m.add_contact(a, a, 0.1), Catch::Contains("itself"));
+  CHECK_THROWS_WITH(m.add_contact(a, 7, 0.1), Catch::Contains("unknown body"));
+  CHECK_THROWS_WITH(m.add_contact(r, q, 0.1), Catch::Contains("both rigid"));
+  m.add_contact(a, r, 0.5);
+  CHECK_THROWS_WITH(m.add_contact(r, a, 0.5), Catch::Contains("declared already"));
+}
+
+TEST_CASE("a rough base and a smooth wall meeting at a corner share the load without double counting",
+          "[core][contact][rigid]") {
+  ModelSettings<2> s;
+  s.lower = Vec<2>(-0.3, -0.3);
+  s.upper = Vec<2>(1.0, 1.0);
+  s.cell = 0.1;
+  s.gravity = Vec<2>(-3.0, -9.81);  // leaning on the wall
+  Model<2> m(s);
+  const int mat = m.add_material(std::make_shared<LinearElastic>(1000.0, 5e6, 0.3));
+  const int soil = m.add_body("soil", 2);
+  m.fill_box(soil, mat, Vec<2>(0.0, 0.0), Vec<2>(0.5, 0.5));
+  const int base = m.add_body("base", 2, true), wall = m.add_body("wall", 2, true);
+  m.fill_box(base, -1, Vec<2>(-0.2, -0.1), Vec<2>(0.9, 0.0));
+  m.fill_box(wall, -1, Vec<2>(-0.1, 0.0), Vec<2>(0.0, 0.8));
+  m.add_contact(soil, base, 1.0);
+  m.add_contact(soil, wall, 0.0);
+  auto damping = std::make_shared<LocalDamping<2>>(0.7);
+  m.add_fix(damping);
+  m.run(1.0);
+  const Vec<2> b0 = m.rigid_motion(base).impulse, w0 = m.rigid_motion(wall).impulse;
+  m.run(0.1);
+  const Vec<2> on_base = (m.rigid_motion(base).impulse - b0) / 0.1, on_wall = (m.rigid_motion(wall).impulse - w0) / 0.1;
+  const double mass = 1000.0 * 0.25;
+  CAPTURE(on_base, on_wall);
+  CHECK(on_base[1] + on_wall[1] == Approx(mass * 9.81).epsilon(0.01));
+  CHECK(on_base[0] + on_wall[0] == Approx(mass * 3.0).epsilon(0.01));
+  CHECK(std::abs(on_wall[1]) < 0.01 * mass * 9.81);  // a smooth wall takes no shear
+  CHECK(on_wall[0] > 0.5 * mass * 3.0);               // and most of the push
+}
