@@ -86,6 +86,7 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
     write_particles_vtu(settings_.dir + "/" + rigid_name, P, settings_.arrays, meta, rigid);
     rigid_files_.emplace_back(t, rigid_name);
     write_file_atomically(settings_.dir + "/rigid.pvd", pvd_text(rigid_files_));
+    write_reactions(model, phase);
   }
   if (settings_.grid) {
     const std::string grid_name = numbered("grid", n);
@@ -96,6 +97,38 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
   if (!probes.empty()) write_file_atomically(settings_.dir + "/probes.csv", probes_csv_text(probes));
   // The next time on the regular grid of output times after t.
   while (next_ <= t + 1e-9 * settings_.every) next_ += settings_.every;
+}
+
+template <int Dim>
+void Output<Dim>::write_reactions(const Model<Dim>& model, const std::string& phase) {
+  static const char* axis[] = {"x", "y", "z"};
+  const auto& bodies = model.bodies();
+  const double t = model.time();
+  std::ostringstream os;
+  os.precision(10);
+  if (reactions_.empty()) {
+    os << "time (s),phase";
+    for (const auto& b : bodies)
+      if (b.rigid)
+        for (int d = 0; d < Dim; ++d) os << ',' << b.name << ".f" << axis[d] << " (N" << (Dim == 2 ? "/m" : "") << ")";
+    os << '\n';
+    last_impulse_.assign(bodies.size(), Vec<Dim>::Zero());
+  }
+  last_impulse_.resize(bodies.size(), Vec<Dim>::Zero());
+  os << t << ',' << phase;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!bodies[b].rigid) continue;
+    const auto& motion = model.rigid_motion(static_cast<int>(b));
+    // The mean over the interval since the last row; the last step's force when no time has passed.
+    const bool interval = files_.size() > 1 && t > last_time_;
+    const Vec<Dim> f = interval ? Vec<Dim>((motion.impulse - last_impulse_[b]) / (t - last_time_)) : motion.force;
+    for (int d = 0; d < Dim; ++d) os << ',' << f[d];
+    last_impulse_[b] = motion.impulse;
+  }
+  os << '\n';
+  reactions_ += os.str();
+  last_time_ = t;
+  write_file_atomically(settings_.dir + "/reactions.csv", reactions_);
 }
 
 template std::string probes_csv_text<2>(const std::vector<std::shared_ptr<Probe<2>>>&);

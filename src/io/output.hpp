@@ -1,7 +1,8 @@
 // A model's output directory: particles_NNNNNN.vtu every `every` seconds with particles.pvd listing
 // them by simulated time (rewritten whole after every file, so it is always valid); rigid bodies in
 // rigid_NNNNNN.vtu + rigid.pvd, so they can be hidden; optional grid_NNNNNN.vtu + grid.pvd; and
-// probes.csv with every field of every probe.
+// probes.csv with every field of every probe; reactions.csv with the mean force of each rigid body on
+// the deformable bodies over each output interval.
 #pragma once
 
 #include <memory>
@@ -43,6 +44,11 @@ class Output {
   std::vector<std::pair<double, std::string>> files_;  // time, particle file name
   std::vector<std::pair<double, std::string>> grid_files_;
   std::vector<std::pair<double, std::string>> rigid_files_;
+  // reactions.csv: its rows so far and the impulses at the last write.
+  std::string reactions_;
+  double last_time_ = 0.0;
+  std::vector<Vec<Dim>> last_impulse_;
+  void write_reactions(const Model<Dim>& model, const std::string& phase);
 };
 
 // The PVD collection text for (time, file) pairs.

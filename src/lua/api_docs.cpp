@@ -83,6 +83,21 @@ const std::vector<ApiDoc>& api_docs() {
        "Fills a shape with particles of a material (ppc per cell per axis, 1..8) and returns the body. The shape must "
        "lie inside the domain; names are unique.",
        "local soil = m:body{ name = \"soil\", material = sand, shape = mpm.shape.rectangle{0, 0, 1, 0.5}, ppc = 2 }"},
+      {"model:rigid", "m:rigid{ name, shape, ppc = 2, velocity = {vx, vy}, density = 7850 }",
+       "A rigid body of prescribed-velocity particles (a shaking-table box, the surface under a landslide): fills the "
+       "shape (rectangle, polygon, or polyline with a thickness; inside the domain) and returns the body. velocity = "
+       "{vx, vy}, each a number (m/s) or a history read at the phase time (default {0, 0}). Each step the nodes of "
+       "the cells holding its particles take their volume-weighted velocity (the paper's Eq. 9); the soil sees it "
+       "through m:contact, or, with no contact declared, moves with it (no slip). density (kg/m3) only gives the "
+       "particles a mass to show. Written to rigid_NNNNNN.vtu; b:reaction() gives its force on the soil.",
+       "local base = m:rigid{ name = \"base\", shape = mpm.shape.rectangle{-2.5, -0.1, 2.0, 0}, ppc = 1, "
+       "velocity = {vx, 0} }"},
+      {"model:contact", "m:contact{ body_a, body_b, friction }",
+       "Frictional contact between two bodies (Bardenhagen): where they meet they may slide with Coulomb friction "
+       "(friction = mu >= 0; 0 smooth, 1 rough) and separate freely; they never interpenetrate. Without m:contact "
+       "bodies share one velocity field where they meet (no slip, no separation). One declaration per pair; two "
+       "rigid bodies cannot be paired.",
+       "m:contact{ block, base, friction = 0.3 }"},
       {"model:fix", "m:fix{ side, dof = \"xy\" }",
        "Holds the grid nodes on one edge: side = \"left\" | \"right\" | \"bottom\" | \"top\"; dof = \"x\" | \"y\" | "
        "\"xy\".",
@@ -126,8 +141,14 @@ const std::vector<ApiDoc>& api_docs() {
        "pressure compression-positive).",
        "local uy = soil:field(\"uy\"); print(#uy, uy[1])"},
       {"body:set_velocity", "b:set_velocity{vx, vy} | b:set_velocity(function(x, y) return vx, vy end)",
-       "Sets the particles' velocity (m/s), uniform or as a function of position.",
+       "Sets the particles' velocity (m/s), uniform or as a function of position. For a rigid body: {vx, vy} with "
+       "numbers or histories replaces the velocity it follows from the next step on.",
        "bar:set_velocity(function(x, y) return 0.1 * math.sin(math.pi * x / 50), 0 end)"},
+      {"body:reaction", "r:reaction()",
+       "For a rigid body: the force {fx, fy} it exerted on the deformable bodies in the last step (N per metre out "
+       "of plane; a base carrying soil reads its weight, upward). The output directory's reactions.csv holds its "
+       "mean over each output interval.",
+       "local f = base:reaction(); print(f[1], f[2])"},
       // --- probe
       {"probe:name", "p:name()", "The probe's name.", "print(p1:name())"},
       {"probe:get", "p:get(field)", "The current value of a field of the probe's particle.", "print(p1:get(\"uy\"))"},

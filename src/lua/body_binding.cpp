@@ -1,4 +1,4 @@
-// Methods of a body: count, centroid, field, name, set_velocity.
+// Methods of a body: count, centroid, field, name, set_velocity, and reaction for rigid bodies.
 #include <sstream>
 
 #include "binding.hpp"
@@ -25,7 +25,8 @@ std::vector<std::size_t> particles_of(const BodyObject& b) {
 int body_tostring(lua_State* L) {
   const auto& b = self(L);
   std::ostringstream os;
-  os << "body '" << b.handle->model.bodies()[b.body].name << "': " << particles_of(b).size() << " particles";
+  const auto& body = b.handle->model.bodies()[b.body];
+  os << (body.rigid ? "rigid body '" : "body '") << body.name << "': " << particles_of(b).size() << " particles";
   lua_pushstring(L, os.str().c_str());
   return 1;
 }
@@ -64,9 +65,14 @@ int body_field(lua_State* L) {
   return 1;
 }
 
-// body:set_velocity{vx, vy} or body:set_velocity(function(x, y) return vx, vy end)
+// body:set_velocity{vx, vy} or body:set_velocity(function(x, y) return vx, vy end); for a rigid
+// body {vx, vy} with numbers or histories replaces the velocity it follows.
 int body_set_velocity(lua_State* L) {
   auto& b = self(L);
+  if (b.handle->model.bodies()[b.body].rigid) {
+    b.handle->model.set_rigid_velocity(b.body, rigid_velocity(L, 2, "the velocity"));
+    return 0;
+  }
   auto& p = b.handle->model.particles();
   const auto list = particles_of(b);
   if (lua_isfunction(L, 2)) {
@@ -92,6 +98,20 @@ int body_set_velocity(lua_State* L) {
   return 0;
 }
 
+// rigid:reaction() -> {fx, fy}: the force the rigid body exerted on the deformable bodies in the last step.
+int body_reaction(lua_State* L) {
+  const auto& b = self(L);
+  const auto& body = b.handle->model.bodies()[b.body];
+  if (!body.rigid) throw Error("body '" + body.name + "' is not rigid: only rigid bodies (m:rigid) report a reaction");
+  const Vec<2> f = b.handle->model.rigid_motion(b.body).force;
+  lua_createtable(L, 2, 0);
+  lua_pushnumber(L, f[0]);
+  lua_rawseti(L, -2, 1);
+  lua_pushnumber(L, f[1]);
+  lua_rawseti(L, -2, 2);
+  return 1;
+}
+
 }  // namespace
 
 void open_body(lua_State* L) {
@@ -101,6 +121,7 @@ void open_body(lua_State* L) {
   set_function<body_centroid>(L, -1, "centroid", "body:centroid");
   set_function<body_field>(L, -1, "field", "body:field");
   set_function<body_set_velocity>(L, -1, "set_velocity", "body:set_velocity");
+  set_function<body_reaction>(L, -1, "reaction", "body:reaction");
   lua_pop(L, 1);
 }
 

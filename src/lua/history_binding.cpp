@@ -164,7 +164,11 @@ int fn(lua_State* L) {
 }  // namespace
 
 std::shared_ptr<const History> to_history(lua_State* L, int index, const std::string& what) {
-  if (lua_type(L, index) == LUA_TNUMBER) return std::make_shared<ConstantHistory>(lua_tonumber(L, index));
+  if (lua_type(L, index) == LUA_TNUMBER) {
+    const double v = lua_tonumber(L, index);
+    if (!std::isfinite(v)) throw Error(what + " must be finite");
+    return std::make_shared<ConstantHistory>(v);
+  }
   if (auto* h = test_object<HistoryObject>(L, index, kHistoryType)) return h->history;
   throw Error(what + " must be a number or a history (mpm.history.*), got " + type_name(L, index));
 }

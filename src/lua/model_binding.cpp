@@ -64,36 +64,114 @@ int model_tostring(lua_State* L) {
   return 1;
 }
 
-int model_body(lua_State* L) {
-  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
-  ModelHandle& h = *handle;
-  Args a(L, 2, {"name", "material", "shape", "ppc"});
-  const std::string name = a.string("name", "body" + std::to_string(h.model.bodies().size() + 1));
-  for (const auto& b : h.model.bodies())
-    if (b.name == name) throw Error("key 'name': a body called '" + name + "' exists already");
-  a.push("material");
-  const auto& mat = check_object<MaterialObject>(L, -1, kMaterialType, "key 'material'");
-  lua_pop(L, 1);
-  const int ppc = static_cast<int>(Args::in_range("ppc", a.integer("ppc", 2), 1, 8, false));
+// The shape under key 'shape', checked to lie in the model's domain.
+std::shared_ptr<const Region> shape_argument(Args& a, const ModelHandle& h) {
+  lua_State* L = a.state();
   if (a.push("shape") == LUA_TNIL) throw Error("missing key 'shape' (an mpm.shape.rectangle/polygon/polyline)");
-  const auto region = check_object<ShapeObject>(L, -1, kShapeType, "key 'shape'").region;
+  auto region = check_object<ShapeObject>(L, -1, kShapeType, "key 'shape'").region;
   lua_pop(L, 1);
-
   const auto& g = h.model.grid();
   const double tol = 1e-9 * g.cell();
   const Vec<2> lo = g.domain_lower(), hi = g.domain_upper();
   if ((region->lower().array() < lo.array() - tol).any() || (region->upper().array() > hi.array() + tol).any())
     throw Error("key 'shape': " + region->describe() + " reaches outside the domain " + point_text(lo) + " to " +
                 point_text(hi));
-  const int body = h.model.add_body(name, ppc);
-  const int material = h.material(mat.material);
+  return region;
+}
+
+std::string body_name_argument(Args& a, const ModelHandle& h, const char* stem) {
+  const std::string name = a.string("name", stem + std::to_string(h.model.bodies().size() + 1));
+  for (const auto& b : h.model.bodies())
+    if (b.name == name) throw Error("key 'name': a body called '" + name + "' exists already");
+  return name;
+}
+
+void fill_region(ModelHandle& h, int body, int material, const Region& region, int ppc) {
   const std::size_t added =
-      h.model.fill(body, material, region->lower(), region->upper(), [&](const Vec<2>& x) { return region->contains(x); });
+      h.model.fill(body, material, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); });
   if (added == 0)
-    throw Error("key 'shape': " + region->describe() + " holds no particle at ppc = " + std::to_string(ppc) +
-                " (smaller than a particle spacing of " + std::to_string(g.cell() / ppc) + " m?)");
+    throw Error("key 'shape': " + region.describe() + " holds no particle at ppc = " + std::to_string(ppc) +
+                " (smaller than a particle spacing of " + std::to_string(h.model.grid().cell() / ppc) + " m?)");
+}
+
+int model_body(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  ModelHandle& h = *handle;
+  Args a(L, 2, {"name", "material", "shape", "ppc"});
+  const std::string name = body_name_argument(a, h, "body");
+  a.push("material");
+  const auto& mat = check_object<MaterialObject>(L, -1, kMaterialType, "key 'material'");
+  lua_pop(L, 1);
+  const int ppc = static_cast<int>(Args::in_range("ppc", a.integer("ppc", 2), 1, 8, false));
+  const auto region = shape_argument(a, h);
+  const int body = h.model.add_body(name, ppc);
+  fill_region(h, body, h.material(mat.material), *region, ppc);
   push_object(L, kBodyType, BodyObject{handle, body});
   return 1;
+}
+
+}  // namespace
+
+// The velocity of a rigid body at `index`: {vx, vy}, each a number (m/s) or a history.
+std::array<std::shared_ptr<const History>, 2> rigid_velocity(lua_State* L, int index, const std::string& what) {
+  index = lua_absindex(L, index);
+  if (lua_isnil(L, index)) {
+    std::array<std::shared_ptr<const History>, 2> rest;
+    rest.fill(std::make_shared<ConstantHistory>(0.0));
+    return rest;
+  }
+  if (!lua_istable(L, index) || luaL_len(L, index) != 2)
+    throw Error(what + " must be {vx, vy}: two numbers (m/s) or histories, got " + type_name(L, index));
+  std::array<std::shared_ptr<const History>, 2> v;
+  for (int d = 0; d < 2; ++d) {
+    lua_rawgeti(L, index, d + 1);
+    v[d] = to_history(L, -1, what + (d ? " vy" : " vx"));
+    lua_pop(L, 1);
+  }
+  return v;
+}
+
+namespace {
+
+// m:rigid{ name, shape, ppc, velocity = {vx, vy}, density }
+int model_rigid(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  ModelHandle& h = *handle;
+  Args a(L, 2, {"name", "shape", "ppc", "velocity", "density"});
+  const std::string name = body_name_argument(a, h, "rigid");
+  const int ppc = static_cast<int>(Args::in_range("ppc", a.integer("ppc", 2), 1, 8, false));
+  const double density = Args::positive("density", a.number("density", 7850.0), "kg/m3");
+  a.push("velocity");
+  const auto velocity = rigid_velocity(L, -1, "key 'velocity'");
+  lua_pop(L, 1);
+  const auto region = shape_argument(a, h);
+  const int body = h.model.add_rigid_body(name, ppc, density, velocity);
+  fill_region(h, body, -1, *region, ppc);
+  push_object(L, kBodyType, BodyObject{handle, body});
+  return 1;
+}
+
+// m:contact{ body_a, body_b, friction = mu }
+int model_contact(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  Args a(L, 2, {"friction"}, true);
+  if (a.length() != 2) throw Error("name the two bodies in contact: m:contact{ body_a, body_b, friction = mu }");
+  int body[2];
+  for (int k = 0; k < 2; ++k) {
+    lua_rawgeti(L, a.index(), k + 1);
+    const auto& b = check_object<BodyObject>(L, -1, kBodyType, k ? "the second body" : "the first body");
+    if (b.handle != handle) throw Error(std::string(k ? "the second" : "the first") + " body belongs to another model");
+    body[k] = b.body;
+    lua_pop(L, 1);
+  }
+  const double mu = Args::at_least("friction", a.number("friction"), 0.0);
+  const auto& bodies = handle->model.bodies();
+  if (body[0] == body[1]) throw Error("body '" + bodies[body[0]].name + "' cannot be in contact with itself");
+  for (const auto& c : handle->model.contacts())
+    if ((c.a == body[0] && c.b == body[1]) || (c.a == body[1] && c.b == body[0]))
+      throw Error("the pair '" + bodies[body[0]].name + "', '" + bodies[body[1]].name + "' is declared already");
+  handle->model.add_contact(body[0], body[1], mu);
+  return 0;
 }
 
 int model_fix(lua_State* L) {
@@ -294,6 +372,8 @@ int model_bodies(lua_State* L) {
 void open_model(lua_State* L, int mpm) {
   new_type<ModelObject, model_tostring>(L, kModelType);
   set_function<model_body>(L, -1, "body", "model:body");
+  set_function<model_rigid>(L, -1, "rigid", "model:rigid");
+  set_function<model_contact>(L, -1, "contact", "model:contact");
   set_function<model_fix>(L, -1, "fix", "model:fix");
   set_function<model_probe>(L, -1, "probe", "model:probe");
   set_function<model_step>(L, -1, "step", "model:step");

@@ -73,6 +73,9 @@ void open_shape(lua_State* L, int mpm);
 void open_history(lua_State* L, int mpm);
 void open_help(lua_State* L, int mpm);
 
+// {vx, vy} at `index` (numbers or histories; nil: at rest) as a rigid body's velocity.
+std::array<std::shared_ptr<const History>, 2> rigid_velocity(lua_State* L, int index, const std::string& what);
+
 // A number or a history at the top of the stack as a history; `what` names it in messages.
 std::shared_ptr<const History> to_history(lua_State* L, int index, const std::string& what);
 

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 
 #include "lua_fixture.hpp"
 
@@ -100,6 +101,8 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
   };
   const std::string mat = "mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3 } ";
   const std::string model = std::string("m = mpm.model{ ") + domain + ", cell = 0.1 } " + mat;
+  const std::string rigid_pair = "b = m:body{ name = 'b', material = mat, shape = mpm.shape.rectangle{0.2, 0.2, 0.6, 0.6} } "
+                                 "r = m:rigid{ name = 'r', shape = mpm.shape.rectangle{0, 0, 1, 0.2} } ";
   const std::vector<Case> cases = {
       {std::string("mpm.model{ ") + domain + ", cell = 0.1, foo = 1 }", "mpm.model: unknown key 'foo' (allowed: domain"},
       {"mpm.model{ cell = 0.1 }", "mpm.model: missing key 'domain'"},
@@ -153,6 +156,26 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {model + "m:probe{ at = {0.5, 0.5} }", "key 'body' must be a body, got nil"},
       {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:field('speed')", "unknown field 'speed'"},
       {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:set_velocity{5, 0} m:run{ duration = 1 }", "left the grid"},
+      // Contact and rigid bodies.
+      {model + rigid_pair + "m:contact{ b, r, friction = -0.1 }", "key 'friction' must be >= 0"},
+      {model + rigid_pair + "m:contact{ b, r }", "missing key 'friction'"},
+      {model + rigid_pair + "m:contact{ b, r, friction = 0.3 } m:contact{ r, b, friction = 0.5 }",
+       "the pair 'r', 'b' is declared already"},
+      {model + rigid_pair + "m:contact{ b, b, friction = 0.3 }", "body 'b' cannot be in contact with itself"},
+      {model + rigid_pair + "m:contact{ b, 'r', friction = 0.3 }", "the second body must be a body, got string"},
+      {model + rigid_pair + "m:contact{ b, friction = 0.3 }", "name the two bodies in contact"},
+      {model + rigid_pair + "m2 = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } "
+               "o = m2:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } m:contact{ b, o, friction = 0 }",
+       "the second body belongs to another model"},
+      {model + "m:rigid{ shape = mpm.shape.rectangle{-0.5, 0, 0.5, 0.1} }", "key 'shape': rectangle"},
+      {model + "m:rigid{ shape = mpm.shape.rectangle{0, 0, 0.5, 0.1}, velocity = {'fast', 0} }",
+       "key 'velocity' vx must be a number or a history (mpm.history.*), got string"},
+      {model + "m:rigid{ shape = mpm.shape.rectangle{0, 0, 0.5, 0.1}, velocity = 2 }",
+       "key 'velocity' must be {vx, vy}: two numbers (m/s) or histories, got number"},
+      {model + "m:rigid{ shape = mpm.shape.rectangle{0, 0, 0.5, 0.1}, velocity = {0, 0/0} }", "key 'velocity' vy must be finite"},
+      {model + rigid_pair + "b:reaction()", "body 'b' is not rigid"},
+      {model + rigid_pair + "r:set_velocity{ 50, 0 } m:run{ duration = 1 }",
+       "is about to leave the grid: rigid body 'r' moves at (50, 0) m/s"},
       {"mpm.history.table{ {0, 0}, {1, 1}, {1, 2} }", "times must increase (point 3)"},
       {"mpm.history.csv{ file = '/nonexistent.csv', value = 'v' }", "/nonexistent.csv: cannot open"},
       {"mpm.history.fn(5)", "expects a function of time"},
@@ -165,6 +188,37 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
     const std::string error = f.error_of(c.code);
     CHECK_THAT(error, Contains(c.expected) && Contains("test:1:"));
   }
+}
+
+TEST_CASE("a rigid base and frictional contact from Lua", "[lua][contact]") {
+  LuaFixture f;
+  const auto dir = std::filesystem::temp_directory_path() / "seismpm_lua_rigid";
+  std::filesystem::remove_all(dir);
+  const std::string error = f.error_of(R"(
+    local m = mpm.model{ domain = {{-1, -0.2}, {2, 1}}, cell = 0.1 }
+    local mat = mpm.material.linear_elastic{ density = 1000, young = 1e7, poisson = 0.3 }
+    local blk = m:body{ name = "block", material = mat, shape = mpm.shape.rectangle{0, 0, 0.5, 0.5} }
+    local base = m:rigid{ name = "base", ppc = 1, velocity = {mpm.history.table{{0, 0}, {10, 0}}, 0},
+                          shape = mpm.shape.polyline{ {-0.9, -0.05}, {1.5, -0.05}, thickness = 0.1 } }
+    assert(base:count() == 26, "base " .. base:count())  -- x = -0.95 .. 1.55: the band's ends are round
+    assert(tostring(base):find("rigid body 'base'"))
+    m:contact{ blk, base, friction = 0.5 }
+    m:output{ dir = ")" + dir.string() + R"(", every = 0.1 }
+    m:run{ duration = 0.5, damping = 0.7 }
+    local f = base:reaction()
+    assert(math.abs(f[2] - 1000 * 9.81 * 0.25) < 0.02 * 1000 * 9.81 * 0.25, "reaction " .. f[2])
+    base:set_velocity{ 1, 0 }
+    local x0 = base:centroid()[1]
+    m:run{ duration = 0.2 }
+    assert(math.abs(base:centroid()[1] - x0 - 0.2) < 1e-9, "the base moves at its velocity")
+  )");
+  CHECK(error == "");
+  const auto csv = dir / "reactions.csv";
+  REQUIRE(std::filesystem::exists(csv));
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  CHECK(header == "time (s),phase,base.fx (N/m),base.fy (N/m)");
 }
 
 TEST_CASE("soil models from Lua: a dry sand column spreads and stays finite", "[lua][materials]") {
