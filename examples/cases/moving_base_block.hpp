@@ -29,6 +29,8 @@ struct MovingBaseBlock {
   double friction = 0.3;                 // mu (0: smooth)
   double settle_time = 0.5;              // s of damped settling under gravity
   ShapeKind shape = ShapeKind::Gimp;
+  bool with_base = true;                 // false: the block alone (falls freely), for timing comparisons
+  bool profile = false;
 
   double density() const { return unit_weight / gravity; }
   // Centroid x displacement of the block at time t after the base starts, for Coulomb friction.
@@ -55,6 +57,7 @@ struct MovingBaseBlock {
     s.cell = cell;
     s.shape = shape;
     s.gravity = Vec<2>(0.0, -gravity);
+    s.profile = profile;
     Built b;
     b.model = std::make_unique<Model<2>>(s);
     auto& m = *b.model;
@@ -63,9 +66,11 @@ struct MovingBaseBlock {
     m.fill_box(b.block, mat, Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0));
     std::array<std::shared_ptr<const History>, 2> rest = {std::make_shared<ConstantHistory>(0.0),
                                                          std::make_shared<ConstantHistory>(0.0)};
-    b.base = m.add_rigid_body("base", 1, 7850.0, rest);
-    m.fill_box(b.base, -1, Vec<2>(-2.5, -cell), Vec<2>(2.0, 0.0));
-    if (contact == BaseContact::Friction) m.add_contact(b.block, b.base, friction);
+    if (with_base) {
+      b.base = m.add_rigid_body("base", 1, 7850.0, rest);
+      m.fill_box(b.base, -1, Vec<2>(-2.5, -cell), Vec<2>(2.0, 0.0));
+      if (contact == BaseContact::Friction) m.add_contact(b.block, b.base, friction);
+    }
     b.damping = std::make_shared<LocalDamping<2>>(0.0);
     m.add_fix(b.damping);
     return b;

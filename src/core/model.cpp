@@ -385,46 +385,108 @@ void Model<Dim>::assign_rigid_velocities() {
   }
 }
 
-// Each contact field marks the nodes it touches: a deformable particle its whole stencil, a rigid
-// particle the nodes of its cell (the paper's boundary nodes of the rigid body).
+template <int Dim>
+std::array<int, Dim> Model<Dim>::cell_coords(int c) const {
+  std::array<int, Dim> x{};
+  for (int d = 0; d < Dim; ++d) {
+    if (d == slab_axis_) continue;
+    x[d] = c % grid_.cells(d);
+    c /= grid_.cells(d);
+  }
+  x[slab_axis_] = c;
+  return x;
+}
+
+// Which contact fields touch each node. Marked per cell rather than per particle (a cell's particles
+// mostly share a body): a deformable field marks every node its cell's particles can reach (cell nodes
+// -1 .. +2 for uGIMP, 0 .. +1 for linear shapes), a superset whose extra slots stay massless; a rigid
+// field marks the nodes of its cells only (the paper's boundary nodes of the rigid body). Then every
+// cell whose particles can reach a shared node is flagged, so the transfers look up slots only there.
 template <int Dim>
 template <class Shape>
 void Model<Dim>::mark_shared_nodes() {
-  const auto& st = stencils<Shape>();
   const auto& P = particles_;
   const auto& G = grid_;
+  const int cells = G.cell_count();
+  FieldSet empty;
+  empty.fill(-1);
+  cell_fields_.assign(cells, empty);
+  std::atomic<int> full_cell{-1};
+  schedule_.for_each_in_own_cell([&](int p) {  // slabs hold disjoint cells
+    if (!add_field(cell_fields_[cell_of_[p]], field_of_body_[P.body[p]])) full_cell.store(cell_of_[p], std::memory_order_relaxed);
+  });
+  constexpr int lo = Shape::K == 2 ? 0 : -1, hi = Shape::K == 2 ? 1 : 2;
+  auto for_each_reach = [&](const std::array<int, Dim>& c, int from, int to, auto&& f) {
+    std::array<int, Dim> o;
+    o.fill(from);
+    for (;;) {
+      int i = 0;
+      bool inside = true;
+      for (int d = 0; d < Dim; ++d) {
+        const int n = c[d] + o[d];
+        inside = inside && n >= 0 && n < G.nodes(d);
+        i += n * G.stride(d);
+      }
+      if (inside) f(i, o);
+      int d = 0;
+      while (d < Dim && ++o[d] > to) o[d] = from, ++d;
+      if (d == Dim) break;
+    }
+  };
   shared_.clear(G.node_count());
   std::atomic<int> overflow{-1};
-  schedule_.for_each([&](int p) {
-    const int b = P.body[p];
-    const int f = field_of_body_[b];
-    if (body_rigid_[b]) {
-      int base = 0;
-      for (int d = 0; d < Dim; ++d) {
-        const int c = std::clamp(static_cast<int>(std::floor((P.x[p][d] - G.origin()[d]) / G.cell())), 0, G.cells(d) - 1);
-        base += c * G.stride(d);
+  // Slabs of one colour are 4 cells apart: the nodes they mark never meet.
+  const int layer = cells / G.cells(slab_axis_);
+  const int slab_cells = ScatterSchedule::kSlabCells;
+  const int slabs = (G.cells(slab_axis_) + slab_cells - 1) / slab_cells;
+  for (int colour = 0; colour < 2; ++colour) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int sl = colour; sl < slabs; sl += 2) {
+      const int end = std::min(cells, (sl + 1) * slab_cells * layer);
+      for (int c = sl * slab_cells * layer; c < end; ++c) {
+        const FieldSet& fs = cell_fields_[c];
+        if (fs[0] < 0) continue;
+        const auto coords = cell_coords(c);
+        for (const int f : fs) {
+          if (f < 0) break;
+          const bool rigid = rules_.rigid(f);
+          for_each_reach(coords, rigid ? 0 : lo, rigid ? 1 : hi, [&](int i, const std::array<int, Dim>&) {
+            if (!shared_.mark(i, f)) overflow.store(i, std::memory_order_relaxed);
+          });
+        }
       }
-      for (int corner = 0; corner < (1 << Dim); ++corner) {
-        int i = base;
-        for (int d = 0; d < Dim; ++d)
-          if (corner >> d & 1) i += G.stride(d);
-        if (!shared_.mark(i, f)) overflow.store(i, std::memory_order_relaxed);
-      }
-    } else {
-      for_each_node(st[p], G, [&](int i, double, const Vec<Dim>&) {
-        if (!shared_.mark(i, f)) overflow.store(i, std::memory_order_relaxed);
-      });
     }
-  });
+  }
+  if (const int c = full_cell.load(); c >= 0) {  // name the cell by its lower corner node
+    const auto x = cell_coords(c);
+    int i = 0;
+    for (int d = 0; d < Dim; ++d) i += x[d] * G.stride(d);
+    overflow.store(i);
+  }
   if (const int i = overflow.load(); i >= 0) {
     std::ostringstream os;
     os << "step " << steps_ << " (t = " << time_ << " s): more than " << SharedNodes<Dim>::kSlots
-       << " contact fields (rigid bodies and bodies in contact pairs) meet at the node at "
-       << format_point<Dim>(grid_.node_position(i));
+       << " contact fields (rigid bodies and bodies in contact pairs) meet near " << format_point<Dim>(G.node_position(i));
     throw SimulationError(os.str());
   }
   shared_.build();
   slot_reaction_.assign(shared_.mass.size(), Vec<Dim>::Zero());
+  // Cells whose deformable particles can reach a shared node: c - hi .. c - lo around it.
+  near_shared_.assign(cells, 0);
+  for (int k = 0; k < shared_.count(); ++k) {
+    const auto n = G.node_coords(shared_.node(k));
+    for_each_reach(n, -hi, -lo, [&](int, const std::array<int, Dim>& o) {
+      std::array<int, Dim> c;
+      for (int d = 0; d < Dim; ++d) {
+        c[d] = n[d] + o[d];
+        if (c[d] < 0 || c[d] >= G.cells(d)) return;
+      }
+      int index = c[slab_axis_];
+      for (int d = Dim - 1; d >= 0; --d)
+        if (d != slab_axis_) index = index * G.cells(d) + c[d];
+      near_shared_[index] = 1;
+    });
+  }
 }
 
 template <int Dim>
@@ -435,44 +497,53 @@ void Model<Dim>::particles_to_grid() {
   auto& P = particles_;
   auto& G = grid_;
   auto& S = shared_;
+  // The common fields, from every deformable particle.
   schedule_.for_each([&](int p) {
-    [[maybe_unused]] int f = 0;
-    if constexpr (Multi) {
-      const int b = P.body[p];
-      f = field_of_body_[b];
-      if (body_rigid_[b]) {
-        // Only the rigid body's own slots: weights N V for Eq. 9 and the gradient for contact normals.
-        const double w = P.volume[p];
-        const Vec<Dim> wv = w * P.v[p];
-        for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
-          const int k = S.index(i);
-          const int s = k >= 0 ? S.slot(k, f) : -1;
-          if (s < 0) return;
-          S.mass[s] += N * w;
-          S.momentum[s] += N * wv;
-          S.gradient[s] += w * dN;
-        });
-        return;
-      }
-    }
+    if constexpr (Multi)
+      if (body_rigid_[P.body[p]]) return;
     const double m = P.mass[p];
     const Vec<Dim> mv = m * P.v[p];
     const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
     const Vec<Dim> mg = m * g;
     for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
-      const Vec<Dim> force = N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
       G.mass[i] += N * m;
       G.momentum[i] += N * mv;
-      G.force[i] += force;
-      if constexpr (Multi) {
+      G.force[i] += N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
+    });
+  });
+  if constexpr (!Multi) return;
+  // Each field's own slots, from the particles that can reach a shared node: a second, short pass
+  // keeps the common one as lean as with a single field.
+  schedule_.for_each([&](int p) {
+    const int b = P.body[p];
+    const int f = field_of_body_[b];
+    if (body_rigid_[b]) {
+      // Only the rigid body's own slots: weights N V for Eq. 9 and the gradient for contact normals.
+      const double w = P.volume[p];
+      const Vec<Dim> wv = w * P.v[p];
+      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
         const int k = S.index(i);
-        if (k < 0) return;
-        const int s = S.slot(k, f);
-        S.mass[s] += N * m;
-        S.momentum[s] += N * mv;
-        S.force[s] += force;
-        S.gradient[s] += m * dN;
-      }
+        const int s = k >= 0 ? S.slot(k, f) : -1;
+        if (s < 0) return;
+        S.mass[s] += N * w;
+        S.momentum[s] += N * wv;
+        S.gradient[s] += w * dN;
+      });
+      return;
+    }
+    if (!near_shared_[cell_of_[p]]) return;
+    const double m = P.mass[p];
+    const Vec<Dim> mv = m * P.v[p];
+    const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
+    const Vec<Dim> mg = m * g;
+    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+      const int k = S.index(i);
+      if (k < 0) return;
+      const int s = S.slot(k, f);
+      S.mass[s] += N * m;
+      S.momentum[s] += N * mv;
+      S.force[s] += N * mg - vs * dN;
+      S.gradient[s] += m * dN;
     });
   });
 }
@@ -599,19 +670,25 @@ void Model<Dim>::grid_to_particles() {
       f = field_of_body_[b];
     }
     Vec<Dim> a = Vec<Dim>::Zero(), vl = Vec<Dim>::Zero();
-    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
-      if constexpr (Multi) {
-        const int k = S.index(i);
-        if (k >= 0) {  // the particle's own field where fields meet
-          const int s = S.slot(k, f);
-          a += N * S.acceleration[s];
-          vl += N * S.velocity[s];
-          return;
+    auto gather = [&](auto slotted) {
+      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
+        if constexpr (decltype(slotted)::value) {
+          const int k = S.index(i);
+          if (k >= 0) {  // the particle's own field where fields meet
+            const int s = S.slot(k, f);
+            a += N * S.acceleration[s];
+            vl += N * S.velocity[s];
+            return;
+          }
         }
-      }
-      a += N * G.acceleration[i];
-      vl += N * G.velocity[i];
-    });
+        a += N * G.acceleration[i];
+        vl += N * G.velocity[i];
+      });
+    };
+    if (Multi && near_shared_[cell_of_[p]])
+      gather(std::true_type{});
+    else
+      gather(std::false_type{});
     P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
     P.x[p] += dt * vl;
     P.u[p] += dt * vl;
@@ -636,20 +713,23 @@ void Model<Dim>::remap_momentum() {
         S.momentum[s].setZero();
   }
   schedule_.for_each([&](int p) {
-    [[maybe_unused]] int f = 0;
-    if constexpr (Multi) {
+    if constexpr (Multi)
       if (body_rigid_[P.body[p]]) return;
-      f = field_of_body_[P.body[p]];
-    }
     const Vec<Dim> mv = P.mass[p] * P.v[p];
-    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
-      G.momentum[i] += N * mv;
-      if constexpr (Multi) {
+    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) { G.momentum[i] += N * mv; });
+  });
+  if constexpr (Multi) {
+    schedule_.for_each([&](int p) {
+      const int b = P.body[p];
+      if (body_rigid_[b] || !near_shared_[cell_of_[p]]) return;
+      const int f = field_of_body_[b];
+      const Vec<Dim> mv = P.mass[p] * P.v[p];
+      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
         const int k = S.index(i);
         if (k >= 0) S.momentum[S.slot(k, f)] += N * mv;
-      }
+      });
     });
-  });
+  }
   const double eps = mass_threshold_;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < nn; ++i)
@@ -689,16 +769,22 @@ void Model<Dim>::update_stress() {
       f = field_of_body_[P.body[p]];
     }
     Mat<Dim> L = Mat<Dim>::Zero();  // velocity gradient, L_ab = dv_a / dx_b
-    for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) {
-      if constexpr (Multi) {
-        const int k = S.index(i);
-        if (k >= 0) {
-          L.noalias() += S.velocity[S.slot(k, f)] * dN.transpose();
-          return;
+    auto gather = [&](auto slotted) {
+      for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) {
+        if constexpr (decltype(slotted)::value) {
+          const int k = S.index(i);
+          if (k >= 0) {
+            L.noalias() += S.velocity[S.slot(k, f)] * dN.transpose();
+            return;
+          }
         }
-      }
-      L.noalias() += G.velocity[i] * dN.transpose();
-    });
+        L.noalias() += G.velocity[i] * dN.transpose();
+      });
+    };
+    if (Multi && near_shared_[cell_of_[p]])
+      gather(std::true_type{});
+    else
+      gather(std::false_type{});
     const Mat<Dim> dL = dt * L;
     strain_increment_[p] = to_voigt(embed<Dim>(Mat<Dim>(0.5 * (dL + dL.transpose()))));
     const Mat3 w = embed<Dim>(Mat<Dim>(0.5 * (dL - dL.transpose())));

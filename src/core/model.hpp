@@ -154,6 +154,7 @@ class Model {
   // Index of the cell holding x, clamped to the grid; the slab axis varies slowest, so each scatter
   // slab is a contiguous range of cells (and, after sorting, of particles).
   int cell_index(const Vec<Dim>& x) const;
+  std::array<int, Dim> cell_coords(int cell) const;  // inverse of the cell index
   void check_particles() const;
   void sort_particles();
   void rebuild_material_lists();
@@ -177,6 +178,8 @@ class Model {
   bool fields_valid_ = false;
   SharedNodes<Dim> shared_;
   std::vector<Vec<Dim>> slot_reaction_;  // per slot: force a rigid field gave this step
+  std::vector<FieldSet> cell_fields_;     // per cell: the contact fields of its particles
+  std::vector<char> near_shared_;         // per cell: its particles may touch a shared node
   double phase_start_ = 0.0;
   bool rigid_bodies_move_ = true;
 

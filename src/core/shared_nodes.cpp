@@ -4,7 +4,7 @@ namespace seismpm {
 
 template <int Dim>
 void SharedNodes<Dim>::clear(int node_count) {
-  std::array<std::int16_t, kSlots> empty;
+  FieldSet empty;
   empty.fill(-1);
   present_.assign(node_count, empty);
   index_.assign(node_count, -1);

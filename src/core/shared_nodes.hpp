@@ -11,6 +11,21 @@
 
 namespace seismpm {
 
+// Up to 4 contact fields, -1 for an empty place.
+using FieldSet = std::array<std::int16_t, 4>;
+
+// Adds `field` to the set; false when it is full with other fields.
+inline bool add_field(FieldSet& set, int field) {
+  for (auto& f : set) {
+    if (f == field) return true;
+    if (f < 0) {
+      f = static_cast<std::int16_t>(field);
+      return true;
+    }
+  }
+  return false;
+}
+
 template <int Dim>
 class SharedNodes {
  public:
@@ -20,17 +35,7 @@ class SharedNodes {
   void clear(int node_count);
   // Records that `field` touches grid node `node`. Race-free when no two threads mark the same node
   // (the coloured scatter). Returns false when the node has kSlots other fields already.
-  bool mark(int node, int field) {
-    auto& p = present_[node];
-    for (int j = 0; j < kSlots; ++j) {
-      if (p[j] == field) return true;
-      if (p[j] < 0) {
-        p[j] = static_cast<std::int16_t>(field);
-        return true;
-      }
-    }
-    return false;
-  }
+  bool mark(int node, int field) { return add_field(present_[node], field); }
   // Lists the nodes with two or more fields and zeroes their slots.
   void build();
 
@@ -57,7 +62,7 @@ class SharedNodes {
   std::vector<Vec<Dim>> acceleration;
 
  private:
-  std::vector<std::array<std::int16_t, kSlots>> present_;  // per grid node, -1 = empty
+  std::vector<FieldSet> present_;  // per grid node
   std::vector<int> index_;                                  // per grid node
   std::vector<int> node_, fields_;                          // per shared node
 };
