@@ -259,6 +259,7 @@ void Model<Dim>::step_with(double dt) {
     particles_to_grid<Shape, false>();  // nodal mass, momentum, internal + external force
   }
   lap("particles to grid", t);
+  if (measure_balance_) measure_balance();
   for (auto& f : fixes_) f->nodal_forces(*this);  // e.g. local damping
   update_nodal_velocities();        // a = f/m, v^L = mv/m + dt a
   if (multi) update_shared_velocities();
@@ -546,6 +547,45 @@ void Model<Dim>::particles_to_grid() {
       S.gradient[s] += m * dN;
     });
   });
+}
+
+// Norms of the out-of-balance and the external force, summed in fixed chunks of nodes so the result
+// (and the step at which a gravity phase ends) does not depend on the number of threads. Fixed
+// components, and nodes where a rigid body carries the soil (their force is the support's to take),
+// are left out of the out-of-balance force.
+template <int Dim>
+void Model<Dim>::measure_balance() {
+  const auto& G = grid_;
+  const auto& S = shared_;
+  const int n = G.node_count();
+  constexpr int kChunk = 4096;
+  const int chunks = (n + kChunk - 1) / kChunk;
+  std::vector<double> unbalanced(chunks, 0.0), external(chunks, 0.0);
+  const double eps = mass_threshold_;
+  const Vec<Dim> g = settings_.gravity;
+  const bool multi = rules_.fields() > 1;
+#pragma omp parallel for schedule(static)
+  for (int c = 0; c < chunks; ++c) {
+    double u = 0.0, e = 0.0;
+    for (int i = c * kChunk, end = std::min(n, (c + 1) * kChunk); i < end; ++i) {
+      if (!(G.mass[i] > eps)) continue;
+      e += (G.mass[i] * g).squaredNorm();
+      if (multi && S.index(i) >= 0) {
+        const int k = S.index(i);
+        bool held = false;
+        for (int j = 0; j < S.fields(k); ++j) held = held || rules_.rigid(S.field_of_slot(k * SharedNodes<Dim>::kSlots + j));
+        if (held) continue;
+      }
+      const unsigned mask = G.fixity(i);
+      for (int d = 0; d < Dim; ++d)
+        if (!(mask >> d & 1)) u += G.force[i][d] * G.force[i][d];
+    }
+    unbalanced[c] = u, external[c] = e;
+  }
+  double u = 0.0, e = 0.0;
+  for (int c = 0; c < chunks; ++c) u += unbalanced[c], e += external[c];
+  out_of_balance_ = std::sqrt(u);
+  external_force_ = std::sqrt(e);
 }
 
 template <int Dim>

@@ -83,6 +83,14 @@ class Model {
   // and rigid bodies stay at rest unless `rigid_bodies_move`.
   void begin_phase(bool rigid_bodies_move);
   double phase_time() const { return time_ - phase_start_; }
+  bool rigid_bodies_move() const { return rigid_bodies_move_; }
+
+  // --- equilibrium ---
+  // When on, every step measures the out-of-balance force (before damping) over the free degrees of
+  // freedom of nodes not held by a rigid body, and the external (gravity) force, as Euclidean norms.
+  void set_balance_measure(bool on) { measure_balance_ = on; }
+  double out_of_balance_force() const { return out_of_balance_; }
+  double external_force() const { return external_force_; }
 
   // --- running ---
   // One explicit step, no longer than dt_max.
@@ -150,6 +158,7 @@ class Model {
   void mark_shared_nodes();
   void update_shared_velocities();
   void resolve_shared_nodes(VelocityStage stage);
+  void measure_balance();
   void accumulate_cell_dilation();
   // Index of the cell holding x, clamped to the grid; the slab axis varies slowest, so each scatter
   // slab is a contiguous range of cells (and, after sorting, of particles).
@@ -182,6 +191,8 @@ class Model {
   std::vector<char> near_shared_;         // per cell: its particles may touch a shared node
   double phase_start_ = 0.0;
   bool rigid_bodies_move_ = true;
+  bool measure_balance_ = false;
+  double out_of_balance_ = 0.0, external_force_ = 0.0;
 
   // Per-step scratch.
   std::vector<Stencil<Dim, LinearShape::K>> linear_stencils_;

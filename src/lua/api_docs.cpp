@@ -117,12 +117,31 @@ const std::vector<ApiDoc>& api_docs() {
        "PNG time histories of the probes in the output directory with gnuplot (probe_<quantity>.png, one curve per "
        "probe, axes with units); returns the file names. From the shell: seismpm plot DIR ux uy.",
        "for _, png in ipairs(m:plot{ quantities = {\"ux\", \"uy\"} }) do print(png) end"},
+      {"model:gravity_phase", "m:gravity_phase{ damping = 0.7, tolerance = 0.005, max_time = 10, k0 }",
+       "The initial-stress phase: self-weight with rigid bodies at rest and local damping (F_damp = -damping "
+       "|F_unbalanced| sign(v) per degree of freedom) until static equilibrium: the out-of-balance force relative to "
+       "the external force and the kinetic energy relative to its peak in the phase both below tolerance (shown with "
+       "the progress; nodes held by a rigid body or a fixity count as supported). Fails with an error at max_time "
+       "(s). At its end displacements and the strain that shear_strain measures are reset to zero; stresses and "
+       "plastic state are kept. k0 (in (0, 3]): first set sigma_v = rho g depth (the overburden of the particles "
+       "above, per grid column) and sigma_h = k0 sigma_v, then settle. Returns { time, steps, unbalanced, kinetic }.",
+       "local eq = m:gravity_phase{ damping = 0.7, tolerance = 0.005, max_time = 5 }; print(eq.time, eq.steps)"},
+      {"model:dynamic_phase", "m:dynamic_phase{ duration, damping = 0 }",
+       "The shaking phase: inertia on, damping (default 0, in [0, 1)), rigid bodies follow their velocity histories, "
+       "read at the phase time, which starts at zero now (so a record starts when the shaking starts). Phases can "
+       "follow each other in any number; m:run{ duration } continues the current phase without restarting its "
+       "clock.",
+       "m:dynamic_phase{ duration = 14 }"},
+      {"model:phase_time", "m:phase_time()", "Time since the current phase started (s); m:time() is the total.",
+       "print(m:phase_time(), m:time())"},
+      {"model:phase", "m:phase()", "The current phase's name: \"run\" before any phase, \"gravity\" or \"dynamic\".",
+       "print(m:phase())"},
       {"model:step", "m:step(n = 1)", "Takes n explicit steps.", "m:step(10)"},
       {"model:run", "m:run{ duration, damping }",
        "Runs for duration (s) more, with a progress display; damping = local damping coefficient in [0, 1) for this "
        "and later runs (default: unchanged, 0 at first). Ctrl-C stops at the next step boundary with the model intact.",
        "m:run{ duration = 1.0, damping = 0.7 }"},
-      {"model:time", "m:time()", "Simulated time (s).", "print(m:time())"},
+      {"model:time", "m:time()", "Simulated time (s), total across phases.", "print(m:time())"},
       {"model:steps", "m:steps()", "Number of steps taken.", "print(m:steps())"},
       {"model:dt", "m:dt()", "The last time step (s), or the one the CFL condition allows before the first step.",
        "print(m:dt())"},

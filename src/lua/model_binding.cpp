@@ -208,9 +208,21 @@ int model_probe(lua_State* L) {
   return 1;
 }
 
-// Steps until `duration` more seconds have passed (or max_steps), with progress, Ctrl-C, outputs at
-// their times and, for m:run, the final state on file.
-void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output) {
+}  // namespace
+
+LocalDamping<2>& damping_of(ModelHandle& h) {
+  if (!h.damping) {
+    h.damping = std::make_shared<LocalDamping<2>>(0.0);
+    h.model.add_fix(h.damping);
+  }
+  return *h.damping;
+}
+
+// Steps until `duration` more seconds have passed (or max_steps, or `done()` says so after a step),
+// with progress (plus `extra()`), Ctrl-C, outputs at their times and, for runs, the final state on
+// file. Returns whether `done` ended it.
+bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,
+             const std::function<bool()>& done, const std::function<std::string()>& extra) {
   Session& s = session(L);
   Model<2>& m = h.model;
   Progress progress(stderr, s.progress);
@@ -218,6 +230,7 @@ void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
   progress.start(h.phase, m.time(), end, m.particles().size(), m.steps());
   s.interrupted = false;
   long taken = 0;
+  bool stopped = false;
   try {
     // Steps shorter than 1e-9 of the duration are round-off, not time.
     const double slack = std::isfinite(duration) ? 1e-9 * duration : 0.0;
@@ -236,7 +249,12 @@ void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
       m.step(until - m.time());
       ++taken;
       if (h.output && h.output->due(m.time())) h.output->write(m, h.probes, h.phase);
-      progress.update(m.time(), m.steps(), m.dt());
+      const bool finished = done && done();
+      progress.update(m.time(), m.steps(), m.dt(), extra ? extra() : std::string());
+      if (finished) {
+        stopped = true;
+        break;
+      }
     }
   } catch (const SimulationError&) {
     // The files written so far stay as they are: valid, up to the last output time.
@@ -246,8 +264,11 @@ void run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
   for (auto& p : h.probes) p->sample(m);
   // The end of a run is always on file, so ParaView and probes.csv show the final state.
   if (final_output && h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
-  progress.finish(m.time(), m.steps(), "done");
+  progress.finish(m.time(), m.steps(), stopped || !done ? "done" : "stopped at its time limit");
+  return stopped;
 }
+
+namespace {
 
 int model_step(lua_State* L) {
   ModelHandle& h = self(L);
@@ -256,7 +277,7 @@ int model_step(lua_State* L) {
     if (!lua_isinteger(L, 2) || lua_tointeger(L, 2) < 1) throw Error("the number of steps must be a whole number >= 1");
     n = lua_tointeger(L, 2);
   }
-  run_for(L, h, INFINITY, n, false);
+  run_for(L, h, INFINITY, n, false, {}, {});
   return 0;
 }
 
@@ -267,13 +288,9 @@ int model_run(lua_State* L) {
   const auto damping = a.optional_number("damping");
   if (damping) {
     Args::in_range("damping", *damping, 0.0, 1.0, true);
-    if (!h.damping) {
-      h.damping = std::make_shared<LocalDamping<2>>(0.0);
-      h.model.add_fix(h.damping);
-    }
-    h.damping->set_alpha(*damping);
+    damping_of(h).set_alpha(*damping);
   }
-  run_for(L, h, duration, std::numeric_limits<long>::max(), true);
+  run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {});
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // The C++ objects behind Lua's userdata types, shared by the binding files.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -72,6 +73,13 @@ void open_material(lua_State* L, int mpm);
 void open_shape(lua_State* L, int mpm);
 void open_history(lua_State* L, int mpm);
 void open_help(lua_State* L, int mpm);
+void open_phases(lua_State* L);
+
+// Steps the model for `duration` s (see model_binding.cpp); true when `done` ended the run.
+bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,
+             const std::function<bool()>& done, const std::function<std::string()>& extra);
+// The model's local damping fix (created at alpha 0 on first use).
+LocalDamping<2>& damping_of(ModelHandle& h);
 
 // {vx, vy} at `index` (numbers or histories; nil: at rest) as a rigid body's velocity.
 std::array<std::shared_ptr<const History>, 2> rigid_velocity(lua_State* L, int index, const std::string& what);

@@ -102,6 +102,7 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   open_material(L_, mpm);
   open_shape(L_, mpm);
   open_history(L_, mpm);
+  open_phases(L_);
   open_help(L_, mpm);
   set_function<param>(L_, mpm, "param", "mpm.param");
   set_function<version>(L_, mpm, "version", "mpm.version");

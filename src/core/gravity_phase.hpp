@@ -1,0 +1,47 @@
+// The gravity (initial stress) phase: self-weight with local damping until static equilibrium
+// (PHYSICS.md, "Local damping"), or the K0 shortcut for level ground.
+#pragma once
+
+#include "model.hpp"
+
+namespace seismpm {
+
+struct GravityPhaseSettings {
+  double damping = 0.7;      // local damping coefficient alpha
+  double tolerance = 0.005;  // on both equilibrium ratios
+  double max_time = 10.0;    // s of simulated time before the phase gives up
+  double k0 = 0.0;           // > 0: set K0 stresses first, then settle
+};
+
+// Watches a damped run for static equilibrium: the out-of-balance force relative to the external
+// force, and the kinetic energy relative to its peak in the phase (at least 1e-3 of the elastic strain
+// energy, so a body set in equilibrium by K0 does not chase round-off), both below the tolerance.
+template <int Dim>
+class EquilibriumMonitor {
+ public:
+  explicit EquilibriumMonitor(double tolerance) : tolerance_(tolerance) {}
+  // After each step of the phase (the model must measure its balance: Model::set_balance_measure).
+  void update(const Model<Dim>& model);
+  bool reached() const { return steps_ >= kMinSteps && force_ratio_ < tolerance_ && energy_ratio_ < tolerance_; }
+  double force_ratio() const { return force_ratio_; }
+  double energy_ratio() const { return energy_ratio_; }
+  double tolerance() const { return tolerance_; }
+
+ private:
+  static constexpr int kMinSteps = 10;  // the first steps of a body at rest prove nothing
+  double tolerance_;
+  double force_ratio_ = 1.0, energy_ratio_ = 1.0, peak_energy_ = 0.0;
+  long steps_ = 0;
+};
+
+// K0 initial stresses for level ground: on every deformable particle sigma_v = rho g depth, where
+// the overburden is the mass per unit width of the deformable particles above it in its grid column
+// (its own half included), and sigma_h = k0 sigma_v (both horizontal axes, and sigma_zz in plane
+// strain); no shear. Gravity must point down (-y in 2D, -z in 3D). Displacements and strains are zeroed.
+template <int Dim>
+void set_k0_stresses(Model<Dim>& model, double k0);
+
+extern template class EquilibriumMonitor<2>;
+extern template class EquilibriumMonitor<3>;
+
+}  // namespace seismpm
