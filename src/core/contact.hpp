@@ -124,43 +124,52 @@ void resolve_contact(NodeFields<Dim>& n, const ContactRules& rules, double min_m
     }
   }
 
-  // Each rigid field in turn.
-  for (int r = 0; r < n.count; ++r) {
-    if (!rules.rigid(n.field[r]) || !(n.mass[r] > 0.0)) continue;
-    const Vec<Dim>& v_r = n.velocity[r];
-    // A gradient this small against sum N V / h means the node is deep inside the rigid body.
-    const double rlen = n.gradient[r].norm();
-    const bool rigid_normal = rlen * cell > 1e-6 * n.mass[r];
-    for (int a = 0; a < n.count; ++a) {
-      if (!active(a) || group[a] != a) continue;
-      // Glued when any member of the group has no contact declared with the rigid field.
-      bool glued = false;
-      double mu = 0.0;
-      for (int j = 0; j < n.count; ++j)
-        if (active(j) && group[j] == a) {
-          const double f = rules.friction(n.field[j], n.field[r]);
-          if (f < 0.0) glued = true;
-          mu = std::max(mu, f);
+  // Each rigid field in turn; where two meet (a base and a wall at a corner) one's correction can undo
+  // the other's (a wall's normal tilts at its foot), so the passes repeat until neither changes anything.
+  constexpr int kPasses = 24;
+  for (int pass = 0; pass < kPasses; ++pass) {
+    bool changed = false;
+    for (int r = 0; r < n.count; ++r) {
+      if (!rules.rigid(n.field[r]) || !(n.mass[r] > 0.0)) continue;
+      const Vec<Dim>& v_r = n.velocity[r];
+      // A gradient this small against sum N V / h means the node is deep inside the rigid body.
+      const double rlen = n.gradient[r].norm();
+      const bool rigid_normal = rlen * cell > 1e-6 * n.mass[r];
+      for (int a = 0; a < n.count; ++a) {
+        if (!active(a) || group[a] != a) continue;
+        // Glued when any member of the group has no contact declared with the rigid field.
+        bool glued = false;
+        double mu = 0.0;
+        for (int j = 0; j < n.count; ++j)
+          if (active(j) && group[j] == a) {
+            const double f = rules.friction(n.field[j], n.field[r]);
+            if (f < 0.0) glued = true;
+            mu = std::max(mu, f);
+          }
+        Vec<Dim> dv;
+        if (glued) {
+          dv = v_r - gv[a];
+        } else {
+          // From the soil toward the rigid body: against the rigid body's outward normal, which is the
+          // cleanest; deep inside it, or where both outward normals point the same way (a node beyond a
+          // thin rigid layer, on its far face, that the soil's support reaches through it), along the
+          // soil's own outward normal: taking the far face's normal there would let the soil through.
+          Vec<Dim> normal;
+          const double slen = gg[a].norm();
+          if (rigid_normal && n.gradient[r].dot(gg[a]) <= 0.0)
+            normal = -n.gradient[r] / rlen;
+          else if (slen * cell > 1e-6 * gm[a])
+            normal = gg[a] / slen;
+          else
+            normal.setZero();
+          dv = normal.squaredNorm() > 0.0 ? contact_detail::correction<Dim>(gv[a], v_r, normal, mu) : Vec<Dim>(v_r - gv[a]);
         }
-      Vec<Dim> dv;
-      if (glued) {
-        dv = v_r - gv[a];
-      } else {
-        // From the soil toward the rigid body: against the rigid body's outward normal, which is the
-        // cleanest; deep inside it, along the soil's own outward normal.
-        Vec<Dim> normal;
-        const double slen = gg[a].norm();
-        if (rigid_normal)
-          normal = -n.gradient[r] / rlen;
-        else if (slen * cell > 1e-6 * gm[a])
-          normal = gg[a] / slen;
-        else
-          normal.setZero();
-        dv = normal.squaredNorm() > 0.0 ? contact_detail::correction<Dim>(gv[a], v_r, normal, mu) : Vec<Dim>(v_r - gv[a]);
+        if (dv.squaredNorm() > 1e-28 * (gv[a].squaredNorm() + v_r.squaredNorm())) changed = true;
+        gv[a] += dv;
+        if (dt > 0.0 && force_on) force_on[r] += (gm[a] / dt) * dv;
       }
-      gv[a] += dv;
-      if (dt > 0.0 && force_on) force_on[r] += (gm[a] / dt) * dv;
     }
+    if (!changed) break;
   }
 
   for (int j = 0; j < n.count; ++j)
