@@ -48,6 +48,8 @@ Model<Dim>::Model(const ModelSettings<Dim>& settings)
   if (!(settings.flip >= 0.0 && settings.flip <= 1.0)) throw InputError("model: flip must be in [0, 1]");
   if (!(settings.fixed_dt >= 0.0)) throw InputError("model: fixed_dt must be >= 0");
   if (settings.sort_every < 1) throw InputError("model: sort_every must be >= 1");
+  if (!(settings.max_dilation == 0.0 || settings.max_dilation >= 1.0))
+    throw InputError("model: max_dilation must be 0 (no limit) or >= 1");
 }
 
 // ---------------------------------------------------------------- building
@@ -57,6 +59,7 @@ int Model<Dim>::add_material(std::shared_ptr<const Material> material) {
   if (!material) throw InputError("model: null material");
   if (materials_.size() >= 65535) throw InputError("model: too many materials");
   p_wave_modulus_.push_back(material->p_wave_modulus());
+  initial_density_.push_back(material->density());
   materials_.push_back(std::move(material));
   material_lists_valid_ = false;
   return static_cast<int>(materials_.size()) - 1;
@@ -831,6 +834,7 @@ void Model<Dim>::update_stress() {
     spin_[p] = Eigen::Vector3d(w(0, 1), w(1, 2), w(0, 2));
   }
   const bool average = settings_.cell_volumetric_strain;
+  const double max_volume_ratio = settings_.max_dilation;
   if (average) accumulate_cell_dilation();
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
@@ -854,6 +858,8 @@ void Model<Dim>::update_stress() {
     // when nothing is averaged.
     const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
     P.volume[p] *= F.template topLeftCorner<Dim, Dim>().determinant();
+    if (max_volume_ratio > 0.0)
+      P.volume[p] = std::min(P.volume[p], max_volume_ratio * P.mass[p] / initial_density_[P.material[p]]);
   }
   if (!material_lists_valid_) rebuild_material_lists();
   for (int m = 0; m < material_count(); ++m) {

@@ -38,6 +38,10 @@ struct ModelSettings {
   // Average the volumetric strain increment over each cell (B-bar style): removes the volumetric
   // locking that isochoric plastic flow (psi = 0) and near-incompressibility cause in low-order cells.
   bool cell_volumetric_strain = true;
+  // Largest particle volume as a multiple of its initial one (0: no limit). A cohesionless particle at
+  // the tension apex carries no stress and would otherwise swell without bound where the soil breaks
+  // up (30x seen on a failing slope), shrinking the time step through its falling density.
+  double max_dilation = 2.0;
   bool profile = false;                    // time each stage of the step (Model::stage_times)
 };
 
@@ -177,6 +181,7 @@ class Model {
   Particles<Dim> particles_;
   std::vector<std::shared_ptr<const Material>> materials_;
   std::vector<double> p_wave_modulus_;  // per material
+  std::vector<double> initial_density_;  // per material
   std::vector<Body> bodies_;
   std::vector<std::shared_ptr<Fix<Dim>>> fixes_;
   std::vector<RigidMotion<Dim>> motion_;  // per body; used by rigid ones

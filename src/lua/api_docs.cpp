@@ -7,11 +7,14 @@ namespace seismpm::lua {
 const std::vector<ApiDoc>& api_docs() {
   static const std::vector<ApiDoc> docs = {
       // --- module
-      {"mpm.model", "mpm.model{ domain, cell, shape, scheme, gravity, cfl, flip, dt }",
+      {"mpm.model", "mpm.model{ domain, cell, shape, scheme, gravity, cfl, flip, dt, max_dilation }",
        "Creates a 2D plane-strain model on a background grid. domain = {{x0, y0}, {x1, y1}} (m), required; "
        "cell = cell size (m, > 0), required; shape = \"gimp\" (default) | \"linear\"; scheme = \"musl\" (default) | "
        "\"usl\"; gravity = {gx, gy} (m/s2, default {0, -9.81}); cfl = Courant number in (0, 1] (default 0.4); "
-       "flip = FLIP share in [0, 1] (default 1, 0 = PIC); dt = fixed time step (s, default: from cfl).",
+       "flip = FLIP share in [0, 1] (default 1, 0 = PIC); dt = fixed time step (s, default: from cfl); "
+       "max_dilation = largest particle volume as a multiple of its initial one (default 2; 0: no limit): where "
+       "cohesionless soil breaks up, stress-free particles would otherwise swell without bound and shrink the time "
+       "step.",
        "local m = mpm.model{ domain = {{0, 0}, {1, 0.6}}, cell = 0.01, shape = \"gimp\" }"},
       {"mpm.material.linear_elastic", "mpm.material.linear_elastic{ density, young, poisson }",
        "Isotropic linear elasticity (plane strain keeps sigma_zz). density (kg/m3, > 0), young (Pa, > 0), "

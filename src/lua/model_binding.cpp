@@ -24,7 +24,7 @@ std::string point_text(const Vec<2>& p) {
 }
 
 int model_new(lua_State* L) {
-  Args a(L, 1, {"domain", "cell", "shape", "scheme", "gravity", "cfl", "flip", "dt"});
+  Args a(L, 1, {"domain", "cell", "shape", "scheme", "gravity", "cfl", "flip", "dt", "max_dilation"});
   ModelSettings<2> s;
   const int domain_type = a.push("domain");
   if (domain_type == LUA_TNIL) throw Error("missing key 'domain' ({{x0, y0}, {x1, y1}} in m)");
@@ -47,6 +47,11 @@ int model_new(lua_State* L) {
   s.cfl = Args::in_range("cfl", a.number("cfl", 0.4), 1e-6, 1.0, false);
   s.flip = Args::in_range("flip", a.number("flip", 1.0), 0.0, 1.0, false);
   if (auto dt = a.optional_number("dt")) s.fixed_dt = Args::positive("dt", *dt, "s");
+  if (auto md = a.optional_number("max_dilation")) {
+    if (!(*md == 0.0 || (*md >= 1.0 && std::isfinite(*md))))
+      throw Error("key 'max_dilation' must be 0 (no limit) or a finite number >= 1");
+    s.max_dilation = *md;
+  }
   for (int d = 0; d < 2; ++d)
     if ((s.upper[d] - s.lower[d]) / s.cell < 2.0 - 1e-9)
       throw Error("key 'cell' is too large: the domain must span at least 2 cells along x and y");
