@@ -27,7 +27,7 @@ build: configure
 
 run: build
 	@mkdir -p out
-	./$(BUILD_DIR)/seismpm examples/01_vibrating_bar.lua
+	./$(BUILD_DIR)/seismpm scenarios/shaking_table.lua
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
