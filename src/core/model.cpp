@@ -195,7 +195,7 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
     if (d == Dim) break;
   }
   if (added && !bodies_[body].rigid) {
-    mass_threshold_ = std::max(mass_threshold_, 1e-12 * mass);
+    mass_threshold_ = std::max(mass_threshold_, 1e-15 * mass);
   }
   if (added) material_lists_valid_ = false;
   return added;
