@@ -137,6 +137,9 @@ for _, line in ipairs(lines) do
 end
 f:close()
 for _, png in ipairs(m:plot{ quantities = {"ux", "uy"} }) do print("plot: " .. png) end
+table_vx:write_csv(dir .. "/table_velocity.csv")
+print("plot: " .. mpm.plot{ file = dir .. "/table_velocity.csv", x = "t", y = {"value"}, title = "Table velocity",
+                            xlabel = "time in the dynamic phase (s)", ylabel = "vx (m/s)" })
 
 if check then
   assert(p1:get("uy") < -0.002, "the crest should settle")

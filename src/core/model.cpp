@@ -122,6 +122,18 @@ void Model<Dim>::add_contact(int a, int b, double friction) {
 }
 
 template <int Dim>
+void Model<Dim>::set_contact_friction(int a, int b, double friction) {
+  if (!(friction >= 0.0 && std::isfinite(friction))) throw InputError("contact: friction must be a finite number >= 0");
+  for (auto& c : contacts_)
+    if ((c.a == a && c.b == b) || (c.a == b && c.b == a)) {
+      c.friction = friction;
+      fields_valid_ = false;
+      return;
+    }
+  throw InputError("contact: no contact is declared between these bodies (m:contact first)");
+}
+
+template <int Dim>
 void Model<Dim>::begin_phase(bool rigid_bodies_move) {
   phase_start_ = time_;
   rigid_bodies_move_ = rigid_bodies_move;

@@ -74,6 +74,8 @@ class Model {
   // Frictional contact between two bodies (Bardenhagen). Bodies without a declared pair share one
   // velocity field where they meet (no slip, no separation).
   void add_contact(int a, int b, double friction);
+  // A declared pair's new Coulomb coefficient (strength loss between phases: peak, then residual).
+  void set_contact_friction(int a, int b, double friction);
   // Fills every cell sub-point (ppc per axis) that lies inside `inside` and the box [lo, hi]
   // with a particle of `body` and `material` (for a rigid body, -1: its own). Returns the number of
   // particles added.

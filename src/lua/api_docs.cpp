@@ -70,6 +70,10 @@ const std::vector<ApiDoc>& api_docs() {
       {"history:duration", "h:duration()", "Time from the first to the last point (s).", "print(vx:duration())"},
       {"history:write_csv", "h:write_csv(file)", "Writes the points as t,value (atomically).",
        "vx:write_csv(\"out/table_velocity.csv\")"},
+      {"mpm.plot", "mpm.plot{ file, x, y = {...}, png, title, xlabel, ylabel }",
+       "A PNG line plot (gnuplot) of columns of a CSV file with a header line: column x against each column in y "
+       "(names as in the header). png defaults to the CSV's name with .png; returns its path.",
+       "mpm.plot{ file = \"out/slide/front.csv\", x = \"time (s)\", y = {\"front x (m)\"}, title = \"Front\" }"},
       {"mpm.param", "mpm.param(name, default)",
        "A scenario parameter: the value given on the command line with --set name=value, converted to the type of "
        "default (number, boolean or string), or default when not given.",
@@ -101,6 +105,10 @@ const std::vector<ApiDoc>& api_docs() {
        "bodies share one velocity field where they meet (no slip, no separation). One declaration per pair; two "
        "rigid bodies cannot be paired.",
        "m:contact{ block, base, friction = 0.3 }"},
+      {"model:set_friction", "m:set_friction{ body_a, body_b, friction }",
+       "Changes the Coulomb coefficient of a declared contact pair from the next step on: a peak value for the "
+       "gravity phase, a residual one once shaking has broken the interface.",
+       "m:set_friction{ rock, bedding, friction = 0.2 }"},
       {"model:fix", "m:fix{ side, dof = \"xy\" }",
        "Holds the grid nodes on one edge: side = \"left\" | \"right\" | \"bottom\" | \"top\"; dof = \"x\" | \"y\" | "
        "\"xy\".",

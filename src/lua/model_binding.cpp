@@ -1,5 +1,6 @@
 // mpm.model and the model's methods: body, fix, probe, step, run and inspection.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -156,12 +157,11 @@ int model_rigid(lua_State* L) {
   return 1;
 }
 
-// m:contact{ body_a, body_b, friction = mu }
-int model_contact(lua_State* L) {
-  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
-  Args a(L, 2, {"friction"}, true);
-  if (a.length() != 2) throw Error("name the two bodies in contact: m:contact{ body_a, body_b, friction = mu }");
-  int body[2];
+// The two bodies of m:contact{ a, b, ... } and m:set_friction{ a, b, ... }.
+std::array<int, 2> body_pair(Args& a, const std::shared_ptr<ModelHandle>& handle, const char* usage) {
+  lua_State* L = a.state();
+  if (a.length() != 2) throw Error(std::string("name the two bodies: ") + usage);
+  std::array<int, 2> body{};
   for (int k = 0; k < 2; ++k) {
     lua_rawgeti(L, a.index(), k + 1);
     const auto& b = check_object<BodyObject>(L, -1, kBodyType, k ? "the second body" : "the first body");
@@ -169,6 +169,14 @@ int model_contact(lua_State* L) {
     body[k] = b.body;
     lua_pop(L, 1);
   }
+  return body;
+}
+
+// m:contact{ body_a, body_b, friction = mu }
+int model_contact(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  Args a(L, 2, {"friction"}, true);
+  const auto body = body_pair(a, handle, "m:contact{ body_a, body_b, friction = mu } (bodies in contact)");
   const double mu = Args::at_least("friction", a.number("friction"), 0.0);
   const auto& bodies = handle->model.bodies();
   if (body[0] == body[1]) throw Error("body '" + bodies[body[0]].name + "' cannot be in contact with itself");
@@ -176,6 +184,23 @@ int model_contact(lua_State* L) {
     if ((c.a == body[0] && c.b == body[1]) || (c.a == body[1] && c.b == body[0]))
       throw Error("the pair '" + bodies[body[0]].name + "', '" + bodies[body[1]].name + "' is declared already");
   handle->model.add_contact(body[0], body[1], mu);
+  return 0;
+}
+
+// m:set_friction{ body_a, body_b, friction = mu }
+int model_set_friction(lua_State* L) {
+  auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
+  Args a(L, 2, {"friction"}, true);
+  const auto body = body_pair(a, handle, "m:set_friction{ body_a, body_b, friction = mu }");
+  const double mu = Args::at_least("friction", a.number("friction"), 0.0);
+  const auto& bodies = handle->model.bodies();
+  bool declared = false;
+  for (const auto& c : handle->model.contacts())
+    declared = declared || (c.a == body[0] && c.b == body[1]) || (c.a == body[1] && c.b == body[0]);
+  if (!declared)
+    throw Error("no contact is declared between '" + bodies[body[0]].name + "' and '" + bodies[body[1]].name +
+                "' (m:contact first)");
+  handle->model.set_contact_friction(body[0], body[1], mu);
   return 0;
 }
 
@@ -396,6 +421,7 @@ void open_model(lua_State* L, int mpm) {
   set_function<model_body>(L, -1, "body", "model:body");
   set_function<model_rigid>(L, -1, "rigid", "model:rigid");
   set_function<model_contact>(L, -1, "contact", "model:contact");
+  set_function<model_set_friction>(L, -1, "set_friction", "model:set_friction");
   set_function<model_fix>(L, -1, "fix", "model:fix");
   set_function<model_probe>(L, -1, "probe", "model:probe");
   set_function<model_step>(L, -1, "step", "model:step");

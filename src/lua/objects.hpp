@@ -74,6 +74,7 @@ void open_shape(lua_State* L, int mpm);
 void open_history(lua_State* L, int mpm);
 void open_help(lua_State* L, int mpm);
 void open_phases(lua_State* L);
+void open_plot(lua_State* L, int mpm);
 
 // Steps the model for `duration` s (see model_binding.cpp); true when `done` ended the run.
 bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,

@@ -103,6 +103,7 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   open_shape(L_, mpm);
   open_history(L_, mpm);
   open_phases(L_);
+  open_plot(L_, mpm);
   open_help(L_, mpm);
   set_function<param>(L_, mpm, "param", "mpm.param");
   set_function<version>(L_, mpm, "version", "mpm.version");

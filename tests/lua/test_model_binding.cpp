@@ -163,7 +163,10 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
        "the pair 'r', 'b' is declared already"},
       {model + rigid_pair + "m:contact{ b, b, friction = 0.3 }", "body 'b' cannot be in contact with itself"},
       {model + rigid_pair + "m:contact{ b, 'r', friction = 0.3 }", "the second body must be a body, got string"},
-      {model + rigid_pair + "m:contact{ b, friction = 0.3 }", "name the two bodies in contact"},
+      {model + rigid_pair + "m:contact{ b, friction = 0.3 }", "name the two bodies"},
+      {model + rigid_pair + "m:set_friction{ b, r, friction = 0.3 }", "no contact is declared between 'b' and 'r'"},
+      {model + rigid_pair + "m:contact{ b, r, friction = 0.3 } m:set_friction{ b, r, friction = -1 }",
+       "key 'friction' must be >= 0"},
       {model + rigid_pair + "m2 = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } "
                "o = m2:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } m:contact{ b, o, friction = 0 }",
        "the second body belongs to another model"},
@@ -176,6 +179,8 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {model + rigid_pair + "b:reaction()", "body 'b' is not rigid"},
       {model + rigid_pair + "r:set_velocity{ 50, 0 } m:run{ duration = 1 }",
        "is about to leave the grid: rigid body 'r' moves at (50, 0) m/s"},
+      {"mpm.plot{ file = '/nonexistent.csv', x = 't', y = {'v'} }", "/nonexistent.csv cannot be opened"},
+      {"mpm.plot{ file = '/nonexistent.csv', x = 't' }", "missing key 'y'"},
       {"mpm.history.table{ {0, 0}, {1, 1}, {1, 2} }", "times must increase (point 3)"},
       {"mpm.history.csv{ file = '/nonexistent.csv', value = 'v' }", "/nonexistent.csv: cannot open"},
       {"mpm.history.fn(5)", "expects a function of time"},
@@ -208,9 +213,11 @@ TEST_CASE("a rigid base and frictional contact from Lua", "[lua][contact]") {
     local f = base:reaction()
     assert(math.abs(f[2] - 1000 * 9.81 * 0.25) < 0.02 * 1000 * 9.81 * 0.25, "reaction " .. f[2])
     base:set_velocity{ 1, 0 }
-    local x0 = base:centroid()[1]
+    m:set_friction{ blk, base, friction = 0 }  -- smooth from now on: the base slides away underneath
+    local x0, b0 = base:centroid()[1], blk:centroid()[1]
     m:run{ duration = 0.2 }
     assert(math.abs(base:centroid()[1] - x0 - 0.2) < 1e-9, "the base moves at its velocity")
+    assert(math.abs(blk:centroid()[1] - b0) < 1e-3, "the block stays: " .. blk:centroid()[1] - b0)
   )");
   CHECK(error == "");
   const auto csv = dir / "reactions.csv";

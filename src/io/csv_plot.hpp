@@ -1,0 +1,22 @@
+// A PNG line plot of columns of a CSV file (a header line of column names after any '#' comment
+// lines), drawn with gnuplot: the
+// landslide's front against time, a deposit profile, a table velocity.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace seismpm {
+
+struct CsvPlot {
+  std::string csv;                  // input file, header line first
+  std::string png;                  // output file (written atomically)
+  std::string x;                    // column for the horizontal axis
+  std::vector<std::string> y;       // columns drawn against it, one curve each
+  std::string title, xlabel, ylabel;
+};
+
+// Throws InputError for a column the file lacks, OutputError when gnuplot is missing or fails.
+void plot_csv(const CsvPlot& plot);
+
+}  // namespace seismpm
