@@ -151,12 +151,14 @@ void resolve_contact(NodeFields<Dim>& n, const ContactRules& rules, double min_m
           dv = v_r - gv[a];
         } else {
           // From the soil toward the rigid body: against the rigid body's outward normal, which is the
-          // cleanest; deep inside it, or where both outward normals point the same way (a node beyond a
-          // thin rigid layer, on its far face, that the soil's support reaches through it), along the
-          // soil's own outward normal: taking the far face's normal there would let the soil through.
+          // cleanest; deep inside it, or where both outward normals point nearly the same way (within
+          // 60 degrees: a node beyond a thin rigid layer, on its far face, that the soil's support reaches
+          // through it), along the soil's own outward normal: taking the far face's normal there would
+          // let the soil through. (The soil's normal follows the grid's staircase; looser tests picked it
+          // at the risers of an inclined surface and locked a block that should slide.)
           Vec<Dim> normal;
           const double slen = gg[a].norm();
-          if (rigid_normal && n.gradient[r].dot(gg[a]) <= 0.0)
+          if (rigid_normal && n.gradient[r].dot(gg[a]) <= 0.5 * rlen * gg[a].norm())
             normal = -n.gradient[r] / rlen;
           else if (slen * cell > 1e-6 * gm[a])
             normal = gg[a] / slen;

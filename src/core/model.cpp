@@ -161,7 +161,8 @@ void Model<Dim>::rebuild_contact_fields() {
 
 template <int Dim>
 std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,
-                             const std::function<bool(const Vec<Dim>&)>& inside) {
+                             const std::function<bool(const Vec<Dim>&)>& inside,
+                             const std::function<Vec<Dim>(const Vec<Dim>&)>& outward) {
   if (body < 0 || body >= static_cast<int>(bodies_.size())) throw InputError("fill: unknown body");
   if (bodies_[body].rigid) material = bodies_[body].material;
   if (material < 0 || material >= material_count()) throw InputError("fill: unknown material");
@@ -194,7 +195,8 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
       bool in_box = true;
       for (int d = 0; d < Dim; ++d) in_box = in_box && x[d] >= lo[d] && x[d] <= hi[d];
       if (in_box && inside(x)) {
-        particles_.add(x, mass, volume, half_width, body, material);
+        const std::size_t p = particles_.add(x, mass, volume, half_width, body, material);
+        if (outward && bodies_[body].rigid) particles_.normal[p] = outward(x);
         index_of_id_.clear();
         ++added;
       }
@@ -534,16 +536,22 @@ void Model<Dim>::particles_to_grid() {
     const int b = P.body[p];
     const int f = field_of_body_[b];
     if (body_rigid_[b]) {
-      // Only the rigid body's own slots: weights N V for Eq. 9 and the gradient for contact normals.
+      // Only the rigid body's own slots: weights N V for Eq. 9, and for contact normals either the
+      // weighted average of the particles' face normals or, without them, sum V grad N.
       const double w = P.volume[p];
       const Vec<Dim> wv = w * P.v[p];
+      const Vec<Dim>& face = P.normal[p];
+      const bool has_face = face.squaredNorm() > 0.0;
       for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
         const int k = S.index(i);
         const int s = k >= 0 ? S.slot(k, f) : -1;
         if (s < 0) return;
         S.mass[s] += N * w;
         S.momentum[s] += N * wv;
-        S.gradient[s] += w * dN;
+        if (has_face)
+          S.gradient[s] += (N * w) * face;
+        else
+          S.gradient[s] += w * dN;
       });
       return;
     }

@@ -79,8 +79,11 @@ class Model {
   // Fills every cell sub-point (ppc per axis) that lies inside `inside` and the box [lo, hi]
   // with a particle of `body` and `material` (for a rigid body, -1: its own). Returns the number of
   // particles added.
+  // `outward` (rigid bodies) gives the outward normal of the body's face nearest to a point: contact
+  // normals then follow the true surface instead of the grid's staircase of cells.
   std::size_t fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,
-                   const std::function<bool(const Vec<Dim>&)>& inside);
+                   const std::function<bool(const Vec<Dim>&)>& inside,
+                   const std::function<Vec<Dim>(const Vec<Dim>&)>& outward = {});
   std::size_t fill_box(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi);
   void add_fix(std::shared_ptr<Fix<Dim>> fix);
 

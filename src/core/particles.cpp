@@ -8,6 +8,7 @@ std::size_t Particles<Dim>::add(const Vec<Dim>& position, double particle_mass, 
   x.push_back(position);
   u.push_back(Vec<Dim>::Zero());
   v.push_back(Vec<Dim>::Zero());
+  normal.push_back(Vec<Dim>::Zero());
   mass.push_back(particle_mass);
   volume.push_back(particle_volume);
   half_width.push_back(particle_half_width);
@@ -39,6 +40,7 @@ void Particles<Dim>::permute(const std::vector<int>& order) {
     apply_order(x, order, s);
     apply_order(u, order, s);
     apply_order(v, order, s);
+    apply_order(normal, order, s);
   }
   {
     std::vector<double> s;

@@ -21,6 +21,7 @@ struct Particles {
   std::vector<Sym> strain;        // total strain since the last reset
   std::vector<double> plastic_strain;  // accumulated plastic shear strain
   std::vector<std::uint8_t> yield;     // 1 when the last update was plastic
+  std::vector<Vec<Dim>> normal;        // rigid particles: outward unit normal of their body's nearest face (else 0)
   std::vector<std::int32_t> id;        // creation index, unchanged by sorting
   std::vector<std::uint16_t> body;
   std::vector<std::uint16_t> material;

@@ -87,6 +87,8 @@ bool RectangleRegion::contains(const Vec<2>& x) const {
   return x[0] >= lower_[0] && x[0] <= upper_[0] && x[1] >= lower_[1] && x[1] <= upper_[1];
 }
 
+Vec<2> RectangleRegion::outward_normal(const Vec<2>&) const { return Vec<2>::Zero(); }
+
 std::string RectangleRegion::describe() const { return "rectangle " + point(lower_) + " to " + point(upper_); }
 
 PolygonRegion::PolygonRegion(std::vector<Vec<2>> vertices) : vertices_(std::move(vertices)) {
@@ -121,6 +123,8 @@ bool PolygonRegion::contains(const Vec<2>& x) const {
   return inside;
 }
 
+Vec<2> PolygonRegion::outward_normal(const Vec<2>&) const { return Vec<2>::Zero(); }
+
 std::string PolygonRegion::describe() const {
   return "polygon of " + std::to_string(vertices_.size()) + " points, area " + std::to_string(std::abs(area()));
 }
@@ -151,6 +155,31 @@ bool PolylineRegion::contains(const Vec<2>& x) const {
   if (best > reach * (1.0 + 1e-12)) return false;
   if (side_ == Side::Both || best == 0.0) return true;
   return side_ == Side::Left ? best_side > 0.0 : best_side < 0.0;
+}
+
+Vec<2> PolylineRegion::outward_normal(const Vec<2>& x) const {
+  // The nearest segment's side normals: left (-dy, dx), right (dy, -dx).
+  double best = std::numeric_limits<double>::infinity();
+  Vec<2> left = Vec<2>::Zero();
+  double side = 0.0;
+  for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
+    const Vec<2> a = points_[i], d = points_[i + 1] - points_[i];
+    const double s = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    const double dist = (x - (a + s * d)).norm();
+    if (dist < best - 1e-15) {
+      best = dist;
+      left = Vec<2>(-d[1], d[0]).normalized();
+      side = cross(d, x - a);
+    }
+  }
+  // A one-sided band's contact face is the line itself: every particle of it faces the free side.
+  switch (side_) {
+    case Side::Right: return left;
+    case Side::Left: return -left;
+    case Side::Both: break;
+  }
+  (void)side;
+  return Vec<2>::Zero();
 }
 
 std::string PolylineRegion::describe() const {

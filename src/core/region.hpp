@@ -15,6 +15,11 @@ class Region {
   virtual ~Region() = default;
   virtual bool contains(const Vec<2>& x) const = 0;
   virtual std::string describe() const = 0;
+  // The outward unit normal of the contact face a rigid body made of this region presents near the
+  // point x, where the region defines one: a one-sided polyline band faces its free side everywhere
+  // (its far face is not a contact face). Zero where it does not (rectangles and polygons: their
+  // faces' normals cancel across thin walls; contact then takes normals from the particles' volume).
+  virtual Vec<2> outward_normal(const Vec<2>& x) const = 0;
   // Axis-aligned bounding box.
   const Vec<2>& lower() const { return lower_; }
   const Vec<2>& upper() const { return upper_; }
@@ -28,6 +33,7 @@ class RectangleRegion : public Region {
   // Throws InputError unless x0 < x1 and y0 < y1.
   RectangleRegion(double x0, double y0, double x1, double y1);
   bool contains(const Vec<2>& x) const override;
+  Vec<2> outward_normal(const Vec<2>& x) const override;
   std::string describe() const override;
 };
 
@@ -36,6 +42,7 @@ class PolygonRegion : public Region {
   // Throws InputError for fewer than 3 vertices, a zero area, or edges that cross.
   explicit PolygonRegion(std::vector<Vec<2>> vertices);
   bool contains(const Vec<2>& x) const override;  // even-odd rule; edges count as inside
+  Vec<2> outward_normal(const Vec<2>& x) const override;
   std::string describe() const override;
   const std::vector<Vec<2>>& vertices() const { return vertices_; }
   double area() const;  // signed: > 0 counter-clockwise
@@ -51,6 +58,7 @@ class PolylineRegion : public Region {
   enum class Side { Both, Left, Right };
   PolylineRegion(std::vector<Vec<2>> points, double thickness, Side side);
   bool contains(const Vec<2>& x) const override;
+  Vec<2> outward_normal(const Vec<2>& x) const override;
   std::string describe() const override;
 
  private:

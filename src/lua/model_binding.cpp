@@ -94,7 +94,8 @@ std::string body_name_argument(Args& a, const ModelHandle& h, const char* stem) 
 
 void fill_region(ModelHandle& h, int body, int material, const Region& region, int ppc) {
   const std::size_t added =
-      h.model.fill(body, material, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); });
+      h.model.fill(body, material, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); },
+                   [&](const Vec<2>& x) { return region.outward_normal(x); });
   if (added == 0)
     throw Error("key 'shape': " + region.describe() + " holds no particle at ppc = " + std::to_string(ppc) +
                 " (smaller than a particle spacing of " + std::to_string(h.model.grid().cell() / ppc) + " m?)");

@@ -228,6 +228,40 @@ TEST_CASE("a rigid base and frictional contact from Lua", "[lua][contact]") {
   CHECK(header == "time (s),phase,base.fx (N/m),base.fy (N/m)");
 }
 
+TEST_CASE("a block on a 22-degree rigid incline slides as Coulomb says, or sticks", "[lua][contact][verification]") {
+  // The incline is a one-sided polyline band: its particles carry the line's normal, so contact follows
+  // the true surface, not the grid's staircase of cells (with normals from the cells a block locked).
+  const std::string setup = R"(
+    function incline(mu, gravity_first)
+      local th = math.rad(22)
+      local m = mpm.model{ domain = {{-1, -1}, {12.5, 5.5}}, cell = 0.1 }
+      local mat = mpm.material.linear_elastic{ density = 2000, young = 5e7, poisson = 0.3 }
+      local function y_of(x) return (10 - x) * math.tan(th) end
+      local c, s = math.cos(th), math.sin(th)
+      local p = {1.0, y_of(1.0)}
+      local blk = m:body{ name = "blk", material = mat, shape = mpm.shape.polygon{ {p[1], p[2]}, {p[1] + c, p[2] - s},
+                          {p[1] + c + 0.5 * s, p[2] - s + 0.5 * c}, {p[1] + 0.5 * s, p[2] + 0.5 * c} } }
+      local surface = m:rigid{ name = "incline", ppc = 1,
+                               shape = mpm.shape.polyline{ {-0.3, y_of(-0.3)}, {11.5, y_of(11.5)}, thickness = 0.2, side = "right" } }
+      m:contact{ blk, surface, friction = mu }
+      if gravity_first then m:gravity_phase{ max_time = 5 } end
+      local c0 = blk:centroid()
+      m:dynamic_phase{ duration = 1.0 }
+      local c1 = blk:centroid()
+      return math.sqrt((c1[1] - c0[1])^2 + (c1[2] - c0[2])^2), 0.5 * 9.81 * (s - mu * c)
+    end
+  )";
+  for (double mu : {0.0, 0.2}) {
+    LuaFixture f;
+    CAPTURE(mu);
+    CHECK(f.error_of(setup + "local d, exact = incline(" + std::to_string(mu) +
+                     ", false) print(string.format('incline mu = %g: %.4f m, exact %.4f m', " + std::to_string(mu) +
+                     ", d, exact)) assert(math.abs(d - exact) < 0.02 * exact, d .. ' vs ' .. exact)") == "");
+  }
+  LuaFixture f;
+  CHECK(f.error_of(setup + "local d = incline(0.5, true) assert(d < 1e-3, 'slipped ' .. d)") == "");
+}
+
 TEST_CASE("soil models from Lua: a dry sand column spreads and stays finite", "[lua][materials]") {
   LuaFixture f;
   const std::string error = f.error_of(R"(
