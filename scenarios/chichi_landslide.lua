@@ -92,7 +92,7 @@ print(string.format("rock: %d particles (%.0f m2 in section: %.1f million m3 for
                     pile:count(), area, area * 500 / 1e6, h))
 
 local dir = mpm.out_dir("out/chichi_landslide")
-m:output{ dir = dir, every = mpm.param("every", 5.0) }
+m:output{ dir = dir, every = mpm.param("every", 5.0), at_run_end = false }  -- runs go in 1-s chunks
 if record == "" then vh:write_csv(dir .. "/record.csv") end
 
 -- Surface profile: the highest rock particle in each cell column.
@@ -143,6 +143,7 @@ repeat
   if left_time > 1e-9 then m:run{ duration = math.min(1.0, left_time) } end
 until left_time <= 1e-9
 
+m:write()  -- the final state on file
 local file = assert(io.open(dir .. "/front.csv", "w"))
 file:write(table.concat(rows, "\n"), "\n")
 file:close()

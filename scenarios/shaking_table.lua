@@ -93,7 +93,7 @@ print(string.format("soil: %d particles, cell %.4g m; box: %d prescribed-velocit
                     soil:count(), cell, base:count() + left:count() + right:count()))
 
 local dir = mpm.out_dir("out/shaking_table")
-m:output{ dir = dir, every = every }
+m:output{ dir = dir, every = every, at_run_end = false }  -- the dynamic phase runs in 0.5-s chunks
 local clock = os.clock()
 local wall0 = os.time()
 
@@ -115,6 +115,7 @@ repeat
   if left_time > 1e-9 then m:run{ duration = math.min(chunk, left_time) } end
 until left_time <= 1e-9
 
+m:write()  -- the final state on file
 local ux, uy = soil:field("ux"), soil:field("uy")
 local u_max = 0
 for i = 1, #ux do u_max = math.max(u_max, math.sqrt(ux[i] ^ 2 + uy[i] ^ 2)) end
@@ -137,6 +138,18 @@ for _, line in ipairs(lines) do
 end
 f:close()
 for _, png in ipairs(m:plot{ quantities = {"ux", "uy"} }) do print("plot: " .. png) end
+-- The failure mechanism: every particle at its final place, coloured by its total displacement.
+do
+  local xs, ys = soil:field("x"), soil:field("y")
+  local rows = { "x (m),y (m),total displacement (m)" }
+  for i = 1, #xs do rows[#rows + 1] = string.format("%.5f,%.5f,%.5f", xs[i], ys[i], math.sqrt(ux[i] ^ 2 + uy[i] ^ 2)) end
+  local out = assert(io.open(dir .. "/final_displacement.csv", "w"))
+  out:write(table.concat(rows, "\n"), "\n")
+  out:close()
+  print("plot: " .. mpm.plot{ file = dir .. "/final_displacement.csv", x = "x (m)", y = {"y (m)"},
+                              color = "total displacement (m)", ylabel = "y (m)",
+                              title = string.format("Total displacement after %g s of shaking", duration) })
+end
 table_vx:write_csv(dir .. "/table_velocity.csv")
 print("plot: " .. mpm.plot{ file = dir .. "/table_velocity.csv", x = "t", y = {"value"}, title = "Table velocity",
                             xlabel = "time in the dynamic phase (s)", ylabel = "vx (m/s)" })

@@ -45,9 +45,15 @@ void plot_csv(const CsvPlot& p) {
   const std::size_t xc = column(p.x);
   if (p.y.empty()) throw InputError("cannot plot: no y columns given");
   std::ostringstream plot;
-  for (std::size_t k = 0; k < p.y.size(); ++k)
-    plot << (k ? ", \\\n     " : "plot ") << quote(p.csv) << " every ::1 using " << xc << ':' << column(p.y[k])
-         << " with lines lw 2 title " << quote(p.y[k]);
+  if (!p.color.empty()) {
+    plot << "set size ratio -1\nset cblabel " << quote(p.color) << "\nset palette rgb 33,13,10\nplot " << quote(p.csv)
+         << " every ::1 using " << xc << ':' << column(p.y.front()) << ':' << column(p.color)
+         << " with points pt 7 ps 0.35 palette notitle";
+  } else {
+    for (std::size_t k = 0; k < p.y.size(); ++k)
+      plot << (k ? ", \\\n     " : "plot ") << quote(p.csv) << " every ::1 using " << xc << ':' << column(p.y[k])
+           << " with lines lw 2 title " << quote(p.y[k]);
+  }
   if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
     throw OutputError("cannot plot: gnuplot is not installed (apt-get install gnuplot-nox)");
   std::ostringstream script;

@@ -14,6 +14,9 @@ struct CsvPlot {
   std::string x;                    // column for the horizontal axis
   std::vector<std::string> y;       // columns drawn against it, one curve each
   std::string title, xlabel, ylabel;
+  // When set: one point per row at (x, y[0]) coloured by this column, equal axis scales (a picture of
+  // particles, e.g. displacement over the slope).
+  std::string color;
 };
 
 // Throws InputError for a column the file lacks, OutputError when gnuplot is missing or fails.

@@ -70,9 +70,11 @@ const std::vector<ApiDoc>& api_docs() {
       {"history:duration", "h:duration()", "Time from the first to the last point (s).", "print(vx:duration())"},
       {"history:write_csv", "h:write_csv(file)", "Writes the points as t,value (atomically).",
        "vx:write_csv(\"out/table_velocity.csv\")"},
-      {"mpm.plot", "mpm.plot{ file, x, y = {...}, png, title, xlabel, ylabel }",
-       "A PNG line plot (gnuplot) of columns of a CSV file with a header line: column x against each column in y "
-       "(names as in the header). png defaults to the CSV's name with .png; returns its path.",
+      {"mpm.plot", "mpm.plot{ file, x, y = {...}, png, title, xlabel, ylabel, color }",
+       "A PNG line plot (gnuplot) of columns of a CSV file with a header line ('#' comment lines before it are "
+       "skipped): column x against each column in y (names as in the header). With color = a column name: one "
+       "point per row at (x, y[1]) coloured by that column, axes to scale (particles over a slope). png defaults "
+       "to the CSV's name with .png; returns its path.",
        "mpm.plot{ file = \"out/slide/front.csv\", x = \"time (s)\", y = {\"front x (m)\"}, title = \"Front\" }"},
       {"mpm.param", "mpm.param(name, default)",
        "A scenario parameter: the value given on the command line with --set name=value, converted to the type of "
@@ -96,7 +98,10 @@ const std::vector<ApiDoc>& api_docs() {
        "{vx, vy}, each a number (m/s) or a history read at the phase time (default {0, 0}). Each step the nodes of "
        "the cells holding its particles take their volume-weighted velocity (the paper's Eq. 9); the soil sees it "
        "through m:contact, or, with no contact declared, moves with it (no slip). density (kg/m3) only gives the "
-       "particles a mass to show. Written to rigid_NNNNNN.vtu; b:reaction() gives its force on the soil.",
+       "particles a mass to show. Written to rigid_NNNNNN.vtu; b:reaction() gives its force on the soil. For an "
+       "inclined sliding surface use a one-sided polyline band (side = \"left\" | \"right\"): its particles carry "
+       "the line's normal, so contact follows the true surface rather than the grid's staircase of cells. Make a "
+       "rigid body at least one cell thick.",
        "local base = m:rigid{ name = \"base\", shape = mpm.shape.rectangle{-2.5, -0.1, 2.0, 0}, ppc = 1, "
        "velocity = {vx, 0} }"},
       {"model:contact", "m:contact{ body_a, body_b, friction }",
@@ -117,12 +122,13 @@ const std::vector<ApiDoc>& api_docs() {
        "A control point: follows the particle of the body nearest to `at` and records all its fields every `every` "
        "seconds of simulated time (0: every step) and at the end of each run.",
        "local p1 = m:probe{ name = \"crest\", body = soil, at = {0.3, 0.5} }"},
-      {"model:output", "m:output{ dir, every = 0.1, fields, grid = false, probe_every }",
+      {"model:output", "m:output{ dir, every = 0.1, fields, grid = false, probe_every, at_run_end = true }",
        "Writes ParaView files into dir (m; --out DIR replaces it): particles_NNNNNN.vtu now, every `every` seconds "
        "of simulated time and at the end of each run, listed with their times in particles.pvd (open that one in "
        "ParaView); probes.csv with every field of every probe. fields = a list of names (default: all; components "
        "such as ux select their vector); grid = true adds grid_NNNNNN.vtu with nodal mass, velocity and fixities; "
-       "probe_every (s) sets every probe's sampling interval.",
+       "probe_every (s) sets every probe's sampling interval. at_run_end = false leaves out the extra file at the "
+       "end of each run (a script that runs in short chunks then only writes every `every` seconds).",
        "m:output{ dir = \"out/slope\", every = 0.1, probe_every = 0.01 }"},
       {"model:plot", "m:plot{ quantities = {\"ux\", \"uy\"} }",
        "PNG time histories of the probes in the output directory with gnuplot (probe_<quantity>.png, one curve per "
@@ -147,6 +153,10 @@ const std::vector<ApiDoc>& api_docs() {
        "print(m:phase_time(), m:time())"},
       {"model:phase", "m:phase()", "The current phase's name: \"run\" before any phase, \"gravity\" or \"dynamic\".",
        "print(m:phase())"},
+      {"model:write", "m:write()",
+       "Writes the current state to the output directory now (particles, rigid bodies, probes, reactions), unless "
+       "it is on file already; for scripts that run in chunks with at_run_end = false.",
+       "m:write()"},
       {"model:step", "m:step(n = 1)", "Takes n explicit steps.", "m:step(10)"},
       {"model:run", "m:run{ duration, damping }",
        "Runs for duration (s) more, with a progress display; damping = local damping coefficient in [0, 1) for this "

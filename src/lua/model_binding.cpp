@@ -294,7 +294,7 @@ bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
   }
   for (auto& p : h.probes) p->sample(m);
   // The end of a run is always on file, so ParaView and probes.csv show the final state.
-  if (final_output && h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
+  if (final_output && h.write_at_run_end && h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
   progress.finish(m.time(), m.steps(), stopped || !done ? "done" : "stopped at its time limit");
   return stopped;
 }
@@ -328,13 +328,14 @@ int model_run(lua_State* L) {
 // m:output{ dir, every, fields, grid, probe_every }
 int model_output(lua_State* L) {
   ModelHandle& h = self(L);
-  Args a(L, 2, {"dir", "every", "fields", "grid", "probe_every"});
+  Args a(L, 2, {"dir", "every", "fields", "grid", "probe_every", "at_run_end"});
   OutputSettings s;
   const std::string& forced = session(L).out_dir;  // --out replaces the script's directory
   if (a.has("dir") || forced.empty()) s.dir = a.string("dir");
   if (!forced.empty()) s.dir = forced;
   s.every = Args::positive("every", a.number("every", 0.1), "s");
   s.grid = a.boolean("grid", false);
+  h.write_at_run_end = a.boolean("at_run_end", true);
   if (const auto fields = a.names("fields")) {
     s.arrays.clear();
     for (const auto& name : *fields) {
@@ -348,6 +349,15 @@ int model_output(lua_State* L) {
   }
   h.output = std::make_unique<Output<2>>(s);
   h.output->write(h.model, h.probes, h.phase);  // the state as it is now
+  return 0;
+}
+
+// m:write(): the current state on file now (when it is not already).
+int model_write(lua_State* L) {
+  ModelHandle& h = self(L);
+  if (!h.output) throw Error("no output directory yet: call m:output{ dir = ... } first");
+  for (auto& p : h.probes) p->sample(h.model);
+  if (h.output->behind(h.model.time())) h.output->write(h.model, h.probes, h.phase);
   return 0;
 }
 
@@ -429,6 +439,7 @@ void open_model(lua_State* L, int mpm) {
   set_function<model_run>(L, -1, "run", "model:run");
   set_function<model_output>(L, -1, "output", "model:output");
   set_function<model_plot>(L, -1, "plot", "model:plot");
+  set_function<model_write>(L, -1, "write", "model:write");
   set_function<model_time>(L, -1, "time", "model:time");
   set_function<model_steps>(L, -1, "steps", "model:steps");
   set_function<model_dt>(L, -1, "dt", "model:dt");

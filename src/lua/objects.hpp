@@ -33,6 +33,7 @@ struct ModelHandle {
   std::shared_ptr<LocalDamping<2>> damping;
   std::unique_ptr<Output<2>> output;
   std::string phase = "run";
+  bool write_at_run_end = true;  // m:output{ at_run_end }: the state at the end of every run on file
 
   int material(const std::shared_ptr<const Material>& m) {
     auto it = material_index.find(m.get());

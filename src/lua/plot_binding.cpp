@@ -7,9 +7,9 @@ namespace seismpm::lua {
 
 namespace {
 
-// mpm.plot{ file, x, y = {...}, png, title, xlabel, ylabel } -> png path
+// mpm.plot{ file, x, y = {...}, png, title, xlabel, ylabel, color } -> png path
 int plot(lua_State* L) {
-  Args a(L, 1, {"file", "x", "y", "png", "title", "xlabel", "ylabel"});
+  Args a(L, 1, {"file", "x", "y", "png", "title", "xlabel", "ylabel", "color"});
   CsvPlot p;
   p.csv = a.string("file");
   p.x = a.string("x");
@@ -21,6 +21,7 @@ int plot(lua_State* L) {
   p.title = a.string("title", "");
   p.xlabel = a.string("xlabel", "");
   p.ylabel = a.string("ylabel", "");
+  p.color = a.string("color", "");
   plot_csv(p);
   lua_pushstring(L, p.png.c_str());
   return 1;
