@@ -114,9 +114,8 @@ void Model<Dim>::add_contact(int a, int b, double friction) {
   if (bodies_[a].rigid && bodies_[b].rigid)
     throw InputError("contact: '" + bodies_[a].name + "' and '" + bodies_[b].name +
                      "' are both rigid; contact acts between a rigid and a deformable body or two deformable ones");
-  for (const auto& c : contacts_)
-    if ((c.a == a && c.b == b) || (c.a == b && c.b == a))
-      throw InputError("contact: the pair '" + bodies_[a].name + "', '" + bodies_[b].name + "' is declared already");
+  if (find_contact(a, b))
+    throw InputError("contact: the pair '" + bodies_[a].name + "', '" + bodies_[b].name + "' is declared already");
   contacts_.push_back(ContactPair{a, b, friction});
   fields_valid_ = false;
 }
@@ -124,13 +123,19 @@ void Model<Dim>::add_contact(int a, int b, double friction) {
 template <int Dim>
 void Model<Dim>::set_contact_friction(int a, int b, double friction) {
   if (!(friction >= 0.0 && std::isfinite(friction))) throw InputError("contact: friction must be a finite number >= 0");
+  ContactPair* c = find_contact(a, b);
+  if (!c)
+    throw InputError("contact: no contact is declared between '" + bodies_.at(a).name + "' and '" + bodies_.at(b).name +
+                     "' (m:contact first)");
+  c->friction = friction;
+  fields_valid_ = false;
+}
+
+template <int Dim>
+ContactPair* Model<Dim>::find_contact(int a, int b) {
   for (auto& c : contacts_)
-    if ((c.a == a && c.b == b) || (c.a == b && c.b == a)) {
-      c.friction = friction;
-      fields_valid_ = false;
-      return;
-    }
-  throw InputError("contact: no contact is declared between these bodies (m:contact first)");
+    if ((c.a == a && c.b == b) || (c.a == b && c.b == a)) return &c;
+  return nullptr;
 }
 
 template <int Dim>

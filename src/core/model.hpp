@@ -162,6 +162,7 @@ class Model {
   // Contact fields: which bodies get their own nodal velocity, and how pairs interact.
   void rebuild_contact_fields();
   int new_body(const std::string& name, int ppc, bool rigid);
+  ContactPair* find_contact(int a, int b);  // the declared pair of a and b (either order), or null
   void assign_rigid_velocities();
   template <class Shape>
   void mark_shared_nodes();

@@ -138,47 +138,37 @@ PolylineRegion::PolylineRegion(std::vector<Vec<2>> points, double thickness, Sid
   bounding_box(points_, side == Side::Both ? 0.5 * thickness : thickness, lower_, upper_);
 }
 
-bool PolylineRegion::contains(const Vec<2>& x) const {
-  const double reach = side_ == Side::Both ? 0.5 * thickness_ : thickness_;
-  // Nearest segment decides the side, so a point is on one side of the whole line.
-  double best = std::numeric_limits<double>::infinity();
-  double best_side = 0.0;
+PolylineRegion::Nearest PolylineRegion::nearest(const Vec<2>& x) const {
+  // The nearest segment decides the side, so a point is on one side of the whole line.
+  Nearest n;
   for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
     const Vec<2> a = points_[i], d = points_[i + 1] - points_[i];
     const double s = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
     const double dist = (x - (a + s * d)).norm();
-    if (dist < best - 1e-15) {
-      best = dist;
-      best_side = cross(d, x - a);
+    if (dist < n.distance - 1e-15) {
+      n.distance = dist;
+      n.side = cross(d, x - a);
+      n.left = Vec<2>(-d[1], d[0]).normalized();
     }
   }
-  if (best > reach * (1.0 + 1e-12)) return false;
-  if (side_ == Side::Both || best == 0.0) return true;
-  return side_ == Side::Left ? best_side > 0.0 : best_side < 0.0;
+  return n;
+}
+
+bool PolylineRegion::contains(const Vec<2>& x) const {
+  const double reach = side_ == Side::Both ? 0.5 * thickness_ : thickness_;
+  const Nearest n = nearest(x);
+  if (n.distance > reach * (1.0 + 1e-12)) return false;
+  if (side_ == Side::Both || n.distance == 0.0) return true;
+  return side_ == Side::Left ? n.side > 0.0 : n.side < 0.0;
 }
 
 Vec<2> PolylineRegion::outward_normal(const Vec<2>& x) const {
-  // The nearest segment's side normals: left (-dy, dx), right (dy, -dx).
-  double best = std::numeric_limits<double>::infinity();
-  Vec<2> left = Vec<2>::Zero();
-  double side = 0.0;
-  for (std::size_t i = 0; i + 1 < points_.size(); ++i) {
-    const Vec<2> a = points_[i], d = points_[i + 1] - points_[i];
-    const double s = std::clamp((x - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-    const double dist = (x - (a + s * d)).norm();
-    if (dist < best - 1e-15) {
-      best = dist;
-      left = Vec<2>(-d[1], d[0]).normalized();
-      side = cross(d, x - a);
-    }
-  }
   // A one-sided band's contact face is the line itself: every particle of it faces the free side.
   switch (side_) {
-    case Side::Right: return left;
-    case Side::Left: return -left;
+    case Side::Right: return nearest(x).left;
+    case Side::Left: return -nearest(x).left;
     case Side::Both: break;
   }
-  (void)side;
   return Vec<2>::Zero();
 }
 

@@ -2,6 +2,7 @@
 // polylines with a thickness. Pure geometry, no grid.
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -62,6 +63,13 @@ class PolylineRegion : public Region {
   std::string describe() const override;
 
  private:
+  struct Nearest {
+    double distance = std::numeric_limits<double>::infinity();
+    double side = 0.0;            // > 0 on the left of the nearest segment
+    Vec<2> left = Vec<2>::Zero();  // that segment's unit normal to its left
+  };
+  Nearest nearest(const Vec<2>& x) const;
+
   std::vector<Vec<2>> points_;
   double thickness_;
   Side side_;

@@ -1,30 +1,13 @@
 #include "csv_plot.hpp"
 
-#include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "atomic_file.hpp"
 #include "core/error.hpp"
+#include "gnuplot.hpp"
 
 namespace seismpm {
-
-namespace {
-
-std::string quote(const std::string& s) {  // gnuplot single-quoted string
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-}  // namespace
 
 void plot_csv(const CsvPlot& p) {
   std::ifstream in(p.csv);
@@ -46,33 +29,24 @@ void plot_csv(const CsvPlot& p) {
   if (p.y.empty()) throw InputError("cannot plot: no y columns given");
   std::ostringstream plot;
   if (!p.color.empty()) {
-    plot << "set size ratio -1\nset cblabel " << quote(p.color) << "\nset palette rgb 33,13,10\nplot " << quote(p.csv)
+    plot << "set size ratio -1\nset cblabel " << gnuplot_quote(p.color) << "\nset palette rgb 33,13,10\nplot " << gnuplot_quote(p.csv)
          << " every ::1 using " << xc << ':' << column(p.y.front()) << ':' << column(p.color)
          << " with points pt 7 ps 0.35 palette notitle";
   } else {
     for (std::size_t k = 0; k < p.y.size(); ++k)
-      plot << (k ? ", \\\n     " : "plot ") << quote(p.csv) << " every ::1 using " << xc << ':' << column(p.y[k])
-           << " with lines lw 2 title " << quote(p.y[k]);
+      plot << (k ? ", \\\n     " : "plot ") << gnuplot_quote(p.csv) << " every ::1 using " << xc << ':' << column(p.y[k])
+           << " with lines lw 2 title " << gnuplot_quote(p.y[k]);
   }
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    throw OutputError("cannot plot: gnuplot is not installed (apt-get install gnuplot-nox)");
   std::ostringstream script;
   script << "set terminal pngcairo size 960,540 noenhanced font 'sans,11'\n"
-         << "set output " << quote(p.png + ".tmp") << "\n"
+         << "set output " << gnuplot_quote(p.png + ".tmp") << "\n"
          << "set datafile separator ','\n"
-         << "set title " << quote(p.title) << "\n"
-         << "set xlabel " << quote(p.xlabel.empty() ? p.x : p.xlabel) << "\n"
-         << "set ylabel " << quote(p.ylabel.empty() ? p.y.front() : p.ylabel) << "\n"
+         << "set title " << gnuplot_quote(p.title) << "\n"
+         << "set xlabel " << gnuplot_quote(p.xlabel.empty() ? p.x : p.xlabel) << "\n"
+         << "set ylabel " << gnuplot_quote(p.ylabel.empty() ? p.y.front() : p.ylabel) << "\n"
          << "set grid\nset key top left\n"
          << plot.str() << "\n";
-  const std::string script_path = p.png + ".gp";
-  write_file_atomically(script_path, script.str());
-  const std::string log = p.png + ".log";
-  const int rc = std::system(("gnuplot " + shell_quote(script_path) + " 2>" + shell_quote(log)).c_str());
-  std::remove(script_path.c_str());
-  if (rc != 0) throw OutputError("gnuplot failed drawing " + p.png + " (see " + log + ")");
-  std::remove(log.c_str());
-  commit_file(p.png + ".tmp", p.png);
+  run_gnuplot(script.str(), p.png);
 }
 
 }  // namespace seismpm

@@ -1,11 +1,11 @@
 #include "probe_plot.hpp"
 
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
 #include "atomic_file.hpp"
 #include "core/error.hpp"
+#include "gnuplot.hpp"
 
 namespace seismpm {
 
@@ -19,18 +19,6 @@ std::string describe(const std::string& q) {
   if (q == "pressure") return "Mean pressure";
   if (q == "q") return "Deviatoric stress q";
   return q;
-}
-
-std::string quote(const std::string& s) {  // gnuplot single-quoted string
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
-std::string shell_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 }  // namespace
@@ -58,8 +46,7 @@ std::vector<std::string> plot_probes(const std::string& dir, const std::vector<s
   }
   if (columns.size() < 2 || columns[0] != "time (s)")
     throw OutputError(csv + ":1: not a probes file (the first column must be 'time (s)')");
-  if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
-    throw OutputError("cannot plot: gnuplot is not installed (apt-get install gnuplot-nox)");
+  require_gnuplot();
 
   std::vector<std::string> written;
   for (const auto& q : quantities) {
@@ -68,26 +55,20 @@ std::vector<std::string> plot_probes(const std::string& dir, const std::vector<s
     for (std::size_t c = 1; c < columns.size(); ++c) {
       const auto dot = columns[c].rfind('.');
       if (dot == std::string::npos || columns[c].substr(dot + 1) != q) continue;
-      plot << (curves++ ? ", \\\n     " : "plot ") << quote(csv) << " every ::1 using 1:" << c + 1
-           << " with lines lw 2 title " << quote(columns[c].substr(0, dot));
+      plot << (curves++ ? ", \\\n     " : "plot ") << gnuplot_quote(csv) << " every ::1 using 1:" << c + 1
+           << " with lines lw 2 title " << gnuplot_quote(columns[c].substr(0, dot));
     }
     if (curves == 0) throw InputError("cannot plot '" + q + "': no probe column ends in ." + q + " in " + csv);
     const std::string png = dir + "/probe_" + q + ".png";
     std::ostringstream script;
     script << "set terminal pngcairo size 960,540 noenhanced font 'sans,11'\n"
-           << "set output " << quote(png + ".tmp") << "\n"
+           << "set output " << gnuplot_quote(png + ".tmp") << "\n"
            << "set datafile separator ','\n"
-           << "set title " << quote(describe(q) + " of the control points") << "\n"
-           << "set xlabel 'time (s)'\nset ylabel " << quote(q + " (" + field_unit(q) + ")") << "\n"
+           << "set title " << gnuplot_quote(describe(q) + " of the control points") << "\n"
+           << "set xlabel 'time (s)'\nset ylabel " << gnuplot_quote(q + " (" + field_unit(q) + ")") << "\n"
            << "set grid\nset key top left\n"
            << plot.str() << "\n";
-    const std::string script_path = dir + "/.probe_" + q + ".gp";
-    write_file_atomically(script_path, script.str());
-    const std::string command = "gnuplot " + shell_quote(script_path) + " 2>" + shell_quote(dir + "/.gnuplot.log");
-    const int rc = std::system(command.c_str());
-    std::remove(script_path.c_str());
-    if (rc != 0) throw OutputError("gnuplot failed drawing " + png + " (see " + dir + "/.gnuplot.log)");
-    commit_file(png + ".tmp", png);
+    run_gnuplot(script.str(), png);
     written.push_back(png);
   }
   return written;

@@ -179,12 +179,7 @@ int model_contact(lua_State* L) {
   Args a(L, 2, {"friction"}, true);
   const auto body = body_pair(a, handle, "m:contact{ body_a, body_b, friction = mu } (bodies in contact)");
   const double mu = Args::at_least("friction", a.number("friction"), 0.0);
-  const auto& bodies = handle->model.bodies();
-  if (body[0] == body[1]) throw Error("body '" + bodies[body[0]].name + "' cannot be in contact with itself");
-  for (const auto& c : handle->model.contacts())
-    if ((c.a == body[0] && c.b == body[1]) || (c.a == body[1] && c.b == body[0]))
-      throw Error("the pair '" + bodies[body[0]].name + "', '" + bodies[body[1]].name + "' is declared already");
-  handle->model.add_contact(body[0], body[1], mu);
+  handle->model.add_contact(body[0], body[1], mu);  // names the bodies of a pair declared twice or with itself
   return 0;
 }
 
@@ -194,13 +189,6 @@ int model_set_friction(lua_State* L) {
   Args a(L, 2, {"friction"}, true);
   const auto body = body_pair(a, handle, "m:set_friction{ body_a, body_b, friction = mu }");
   const double mu = Args::at_least("friction", a.number("friction"), 0.0);
-  const auto& bodies = handle->model.bodies();
-  bool declared = false;
-  for (const auto& c : handle->model.contacts())
-    declared = declared || (c.a == body[0] && c.b == body[1]) || (c.a == body[1] && c.b == body[0]);
-  if (!declared)
-    throw Error("no contact is declared between '" + bodies[body[0]].name + "' and '" + bodies[body[1]].name +
-                "' (m:contact first)");
   handle->model.set_contact_friction(body[0], body[1], mu);
   return 0;
 }
