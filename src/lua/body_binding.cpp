@@ -42,15 +42,19 @@ int body_count(lua_State* L) {
   return 1;
 }
 
-int body_centroid(lua_State* L) {
-  const auto& b = self(L);
-  const Vec<2> c = b.handle->model.centroid(b.body);
+// {x, y} as a Lua array.
+int push_point(lua_State* L, const Vec<2>& p) {
   lua_createtable(L, 2, 0);
-  lua_pushnumber(L, c[0]);
+  lua_pushnumber(L, p[0]);
   lua_rawseti(L, -2, 1);
-  lua_pushnumber(L, c[1]);
+  lua_pushnumber(L, p[1]);
   lua_rawseti(L, -2, 2);
   return 1;
+}
+
+int body_centroid(lua_State* L) {
+  const auto& b = self(L);
+  return push_point(L, b.handle->model.centroid(b.body));
 }
 
 int body_field(lua_State* L) {
@@ -103,13 +107,7 @@ int body_reaction(lua_State* L) {
   const auto& b = self(L);
   const auto& body = b.handle->model.bodies()[b.body];
   if (!body.rigid) throw Error("body '" + body.name + "' is not rigid: only rigid bodies (m:rigid) report a reaction");
-  const Vec<2> f = b.handle->model.rigid_motion(b.body).force;
-  lua_createtable(L, 2, 0);
-  lua_pushnumber(L, f[0]);
-  lua_rawseti(L, -2, 1);
-  lua_pushnumber(L, f[1]);
-  lua_rawseti(L, -2, 2);
-  return 1;
+  return push_point(L, b.handle->model.rigid_motion(b.body).force);
 }
 
 }  // namespace
