@@ -78,8 +78,14 @@ local pile_shape = mpm.shape.polygon{ {0, bedding_y(0)}, {x_toe, 0}, {x_toe + Tv
                                       {150, bedding_y(150) + Tv} }
 local pile = m:body{ name = "rock", material = rock, shape = pile_shape, ppc = 2 }
 local c, s = math.cos(dip), math.sin(dip)
-local along = mpm.history.fn(function(t) return vh:at(t) * c * c end)   -- (v . d) d, d = (cos, -sin)
-local down = mpm.history.fn(function(t) return -vh:at(t) * c * s end)
+-- (v . d) d with d = (cos, -sin), tabulated once at 0.005 s (no Lua call in the time loop).
+local along_points, down_points = {}, {}
+for k = 0, math.ceil(vh:duration() / 0.005) do
+  local t = k * 0.005
+  along_points[#along_points + 1] = {t, vh:at(t) * c * c}
+  down_points[#down_points + 1] = {t, -vh:at(t) * c * s}
+end
+local along, down = mpm.history.table(along_points), mpm.history.table(down_points)
 local bedding = m:rigid{ name = "bedding", ppc = 1, velocity = {along, down},
                          shape = mpm.shape.polyline{ {-100, bedding_y(-100)}, {x_toe, 0}, thickness = 2 * h, side = "right" } }
 local floor = m:rigid{ name = "valley_floor", ppc = 1, velocity = {vh, 0},

@@ -159,7 +159,11 @@ void Model<Dim>::rebuild_contact_fields() {
   }
   if (fields > 32000) throw InputError("model: too many bodies in contact pairs");
   rules_.reset(fields);
-  for (int b = 0; b < n; ++b) rules_.set_rigid(field_of_body_[b], bodies_[b].rigid);
+  body_of_field_.assign(fields, -1);  // a rigid or paired body's own field; field 0 may hold many
+  for (int b = 0; b < n; ++b) {
+    rules_.set_rigid(field_of_body_[b], bodies_[b].rigid);
+    if (field_of_body_[b] > 0) body_of_field_[field_of_body_[b]] = b;
+  }
   for (const auto& c : contacts_) rules_.set_friction(field_of_body_[c.a], field_of_body_[c.b], c.friction);
   fields_valid_ = true;
 }
@@ -588,7 +592,10 @@ void Model<Dim>::measure_balance() {
   const int n = G.node_count();
   constexpr int kChunk = 4096;
   const int chunks = (n + kChunk - 1) / kChunk;
-  std::vector<double> unbalanced(chunks, 0.0), external(chunks, 0.0);
+  auto& unbalanced = balance_scratch_[0];
+  auto& external = balance_scratch_[1];
+  unbalanced.assign(chunks, 0.0);
+  external.assign(chunks, 0.0);
   const double eps = mass_threshold_;
   const Vec<Dim> g = settings_.gravity;
   const bool multi = rules_.fields() > 1;
@@ -700,9 +707,7 @@ void Model<Dim>::resolve_shared_nodes(VelocityStage stage) {
   for (int s = 0, n = static_cast<int>(slot_reaction_.size()); s < n; ++s) {
     if (s % kSlots >= S.fields(s / kSlots)) continue;
     const int f = S.field_of_slot(s);
-    if (!rules_.rigid(f)) continue;
-    for (std::size_t b = 0; b < bodies_.size(); ++b)
-      if (field_of_body_[b] == f) motion_[b].force += slot_reaction_[s];
+    if (rules_.rigid(f)) motion_[body_of_field_[f]].force += slot_reaction_[s];
   }
   for (std::size_t b = 0; b < bodies_.size(); ++b)
     if (bodies_[b].rigid) motion_[b].impulse += dt * motion_[b].force;

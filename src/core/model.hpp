@@ -193,6 +193,7 @@ class Model {
   std::vector<RigidMotion<Dim>> motion_;  // per body; used by rigid ones
   std::vector<ContactPair> contacts_;
   std::vector<int> field_of_body_;
+  std::vector<int> body_of_field_;
   std::vector<char> body_rigid_;
   ContactRules rules_;
   bool fields_valid_ = false;
@@ -204,6 +205,7 @@ class Model {
   bool rigid_bodies_move_ = true;
   bool measure_balance_ = false;
   double out_of_balance_ = 0.0, external_force_ = 0.0;
+  std::array<std::vector<double>, 2> balance_scratch_;  // per chunk of nodes: out-of-balance, external
 
   // Per-step scratch.
   std::vector<Stencil<Dim, LinearShape::K>> linear_stencils_;
