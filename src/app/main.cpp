@@ -34,12 +34,63 @@ std::vector<std::string> library_dirs(const char* argv0) {
   return dirs;
 }
 
+// The options a user writes after the script (`seismpm scenario.lua --set cell=0.01`, as the scenario
+// headers show) are the same options: taken out of the script's words, which keep the rest. A lone
+// "--" ends this, so a script can still receive "--set" as a word.
+struct TrailingOptions {
+  std::vector<std::string> sets;
+  std::string out;
+  int threads = 0;
+  bool quiet = false;
+  std::string error;
+};
+
+TrailingOptions take_trailing_options(std::vector<std::string>& words) {
+  TrailingOptions o;
+  std::vector<std::string> kept;
+  auto value = [&](std::size_t& i, const std::string& name, const std::string& word) -> std::string {
+    if (word.size() > name.size() && word[name.size()] == '=') return word.substr(name.size() + 1);
+    if (i + 1 < words.size()) return words[++i];
+    o.error = name + " needs a value";
+    return {};
+  };
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string& w = words[i];
+    auto is = [&](const std::string& name) { return w == name || w.rfind(name + "=", 0) == 0; };
+    if (w == "--") {
+      kept.insert(kept.end(), words.begin() + static_cast<long>(i) + 1, words.end());
+      break;
+    } else if (is("--set")) {
+      o.sets.push_back(value(i, "--set", w));
+    } else if (is("--out")) {
+      o.out = value(i, "--out", w);
+    } else if (is("--threads")) {
+      const std::string v = value(i, "--threads", w);
+      try {
+        std::size_t used = 0;
+        o.threads = std::stoi(v, &used);
+        if (used != v.size() || o.threads < 1 || o.threads > 1024) throw std::invalid_argument(v);
+      } catch (const std::exception&) {
+        o.error = "--threads expects a whole number in [1, 1024], got '" + v + "'";
+      }
+    } else if (w == "--quiet") {
+      o.quiet = true;
+    } else {
+      kept.push_back(w);
+    }
+    if (!o.error.empty()) break;
+  }
+  words = kept;
+  return o;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"seismpm: Material Point Method for seismic slope failure and landslide run-out.\n"
                "  seismpm                   interactive console\n"
-               "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words)\n"
+               "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words; --set, --out,\n"
+               "                            --threads, --quiet after FILE are options too)\n"
                "  seismpm -i FILE.lua       run, then stay in the console\n"
                "  seismpm -e 'lua code'     run a chunk\n"
                "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy)",
@@ -72,6 +123,24 @@ int main(int argc, char** argv) {
     std::fputs(seismpm::lua::api_markdown().c_str(), stdout);
     return 0;
   }
+  const std::vector<std::string> rest = app.remaining();
+  std::string script;
+  std::vector<std::string> script_args;
+  if (!rest.empty()) {
+    script = rest.front();
+    script_args.assign(rest.begin() + 1, rest.end());
+  }
+  if (!script.empty() && script != "plot") {
+    const TrailingOptions trailing = take_trailing_options(script_args);
+    if (!trailing.error.empty()) {
+      std::fprintf(stderr, "seismpm: %s\n", trailing.error.c_str());
+      return 2;
+    }
+    sets.insert(sets.end(), trailing.sets.begin(), trailing.sets.end());
+    if (!trailing.out.empty()) out = trailing.out;
+    if (trailing.threads > 0) threads = trailing.threads;
+    quiet = quiet || trailing.quiet;
+  }
   if (threads > 0) omp_set_num_threads(threads);
 
   seismpm::lua::Session session;
@@ -85,14 +154,6 @@ int main(int argc, char** argv) {
   }
   session.out_dir = out;
   session.progress = seismpm::Progress::detect(stderr, quiet);
-
-  const std::vector<std::string> rest = app.remaining();
-  std::string script;
-  std::vector<std::string> script_args;
-  if (!rest.empty()) {
-    script = rest.front();
-    script_args.assign(rest.begin() + 1, rest.end());
-  }
 
   // seismpm plot DIR [quantities...]: plots of a finished run's probes.
   if (script == "plot" && !std::filesystem::is_regular_file(script)) {

@@ -57,4 +57,19 @@ rm -rf "$dir"
 has "interrupted (Ctrl-C) at t ="
 has "the model is intact"
 has_line "after	true	20000	true"
+# Options written after the script (as the scenario headers show them) are options; other words, and
+# everything after a lone "--", reach the script in `arg`.
+dir=$(mktemp -d)
+cat >"$dir/args.lua" <<'LUA'
+print("cell", mpm.param("cell", 1), "mode", mpm.param("mode", "none"), "args", table.concat(arg, " "))
+LUA
+out=$("$bin" "$dir/args.lua" --set cell=0.5 word --set=mode=fast --quiet -- --set x=1 2>&1)
+status=$?
+[ $status -eq 0 ] || fail "exit status $status with trailing options"
+has_line "cell	0.5	mode	fast	args	word --set x=1"
+out=$("$bin" "$dir/args.lua" --threads zero 2>&1)
+status=$?
+[ $status -eq 2 ] || fail "a bad trailing --threads gave exit status $status, not 2"
+has "--threads expects a whole number"
+rm -rf "$dir"
 echo "console test passed"
