@@ -1,13 +1,16 @@
--- Mesh sensitivity of the shaking-table slope (the paper's Table A.1 brackets about 25k, 48k and 100k
+-- Mesh sensitivity of the shaking-table slope (the paper's Table A.1: about 25k, 48k and 100k
 -- particles): runs scenarios/shaking_table.lua at three cell sizes and prints, for each, the particle
--- count, cell size, wall time and maximum total displacement at the end of shaking, then the spread.
--- The fine runs are long on 2 cores (the 100k-particle one takes on the order of an hour): pick fewer
--- with --set cells=0.0075,0.0055 or shorten them with --set duration=4. Each run writes into
--- out/mesh_sensitivity/cell_<size>/ (do not pass --out: it would send all runs to one directory).
+-- count, cell size, wall time, the maximum total displacement at the end of shaking and the two
+-- control points, then the spread. The cell sizes divide the 0.9 m box into 120, 168 and 240 cells,
+-- so the walls lie on grid lines (2 x 2 particles per cell: 24.8k, 48.7k and 99.5k particles).
+-- The fine runs are long on 2 cores (the 100k-particle one takes about an hour): pick fewer with
+-- --set cells=0.0075,0.0055 or shorten them with --set duration=4. Each run writes into
+-- out/mesh_sensitivity/cell_<size>/ (do not pass --out: it would send all runs to one directory);
+-- the table goes to out/mesh_sensitivity/mesh_sensitivity.csv.
 --
---   seismpm scenarios/mesh_sensitivity.lua [--set cells=0.0075,0.005625,0.00375] [--set duration=14]
+--   seismpm scenarios/mesh_sensitivity.lua [--set cells=0.0075,0.00535714,0.00375] [--set duration=14]
 
-local cells_text = mpm.param("cells", "0.0075,0.005625,0.00375")  -- m (0.9 m / 120, 160, 240): 25k, 44k, 100k particles
+local cells_text = mpm.param("cells", string.format("%.8g,%.8g,%.8g", 0.9 / 120, 0.9 / 168, 0.9 / 240))  -- m
 local duration = mpm.param("duration", 14.0)
 local check = mpm.param("check", false)   -- assert the runs are consistent (ctest)
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
@@ -39,6 +42,8 @@ local function run(cell)
     cell = cell,
     particles = tonumber(text:match("soil particles: (%d+)")),
     u_max = tonumber(text:match("maximum total displacement at [%d%.]+ s of shaking: ([%d%.]+) m")),
+    crest_uy = tonumber(text:match("point 1 %(crest%) uy = ([-%d%.]+) m")),
+    face_ux = tonumber(text:match("point 2 %(face%) ux = ([-%d%.]+) m")),
     wall = os.time() - start,
   }
 end
@@ -46,17 +51,28 @@ end
 local results = {}
 for _, c in ipairs(cells) do results[#results + 1] = run(c) end
 
-local lines = { "cell (m),particles,wall time (s),maximum total displacement (m)" }
-print(string.format("\n%10s %10s %12s %14s", "cell (m)", "particles", "wall (s)", "u_max (m)"))
-local lo, hi, sum = math.huge, -math.huge, 0
+local lines = { "cell (m),particles,wall time (s),maximum total displacement (m),point 1 uy (m),point 2 ux (m)" }
+print(string.format("\n%10s %10s %10s %12s %12s %12s", "cell (m)", "particles", "wall (s)", "u_max (m)",
+                    "point1 uy", "point2 ux"))
 for _, r in ipairs(results) do
-  print(string.format("%10.4f %10d %12d %14.4f", r.cell, r.particles, r.wall, r.u_max))
-  lines[#lines + 1] = string.format("%g,%d,%d,%.5f", r.cell, r.particles, r.wall, r.u_max)
-  lo, hi, sum = math.min(lo, r.u_max), math.max(hi, r.u_max), sum + r.u_max
+  print(string.format("%10.5f %10d %10d %12.4f %12.4f %12.4f", r.cell, r.particles, r.wall, r.u_max, r.crest_uy,
+                      r.face_ux))
+  lines[#lines + 1] = string.format("%.8g,%d,%d,%.5f,%.5f,%.5f", r.cell, r.particles, r.wall, r.u_max, r.crest_uy,
+                                    r.face_ux)
 end
-local mean = sum / #results
-print(string.format("spread: %.4f .. %.4f m, +-%.1f %% about the mean %.4f m (paper: about +-7 %%)", lo, hi,
-                    50 * (hi - lo) / mean, mean))
+-- The spread of each measure: half the range about the mean, in per cent (the paper's +-7 %).
+local function spread(key)
+  local lo, hi, sum = math.huge, -math.huge, 0
+  for _, r in ipairs(results) do lo, hi, sum = math.min(lo, r[key]), math.max(hi, r[key]), sum + r[key] end
+  local mean = sum / #results
+  return lo, hi, mean, 50 * (hi - lo) / math.abs(mean)
+end
+for _, q in ipairs{ {"u_max", "maximum total displacement"}, {"crest_uy", "point 1 (crest) uy"},
+                    {"face_ux", "point 2 (face) ux"} } do
+  local lo, hi, mean, pct = spread(q[1])
+  print(string.format("spread of the %s: %.4f .. %.4f m, +-%.1f %% about the mean %.4f m%s", q[2], lo, hi, pct,
+                      mean, q[1] == "u_max" and " (paper: about +-7 %)" or ""))
+end
 local f = assert(io.open(base_out .. "/mesh_sensitivity.csv", "w"))
 f:write(table.concat(lines, "\n"), "\n")
 f:close()

@@ -60,6 +60,7 @@ int Model<Dim>::add_material(std::shared_ptr<const Material> material) {
   if (materials_.size() >= 65535) throw InputError("model: too many materials");
   p_wave_modulus_.push_back(material->p_wave_modulus());
   initial_density_.push_back(material->density());
+  tensionless_.push_back(material->tensionless());
   materials_.push_back(std::move(material));
   material_lists_valid_ = false;
   return static_cast<int>(materials_.size()) - 1;
@@ -248,7 +249,7 @@ void Model<Dim>::step(double dt_max) {
     std::size_t fastest = 0;
     double speed = -1.0;
     for (std::size_t p = 0; p < particles_.size(); ++p) {
-      const double c = std::sqrt(p_wave_modulus_[particles_.material[p]] / particles_.density(p)) + particles_.v[p].norm();
+      const double c = signal_speed(p);
       if (!(c <= speed)) fastest = p, speed = c;
     }
     std::ostringstream os;
@@ -342,8 +343,7 @@ double Model<Dim>::stable_time_step() const {
   double max_speed = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_speed)
   for (int p = 0; p < n; ++p) {
-    const double c = std::sqrt(p_wave_modulus_[particles_.material[p]] / particles_.density(p));
-    max_speed = std::max(max_speed, c + particles_.v[p].norm());
+    max_speed = std::max(max_speed, signal_speed(p));
   }
   return settings_.cfl * grid_.cell() / max_speed;
 }
@@ -865,6 +865,7 @@ void Model<Dim>::update_stress() {
   }
   const bool average = settings_.cell_volumetric_strain;
   const double max_volume_ratio = settings_.max_dilation;
+  const bool closure = settings_.crack_closure;
   if (average) accumulate_cell_dilation();
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
@@ -887,6 +888,14 @@ void Model<Dim>::update_stress() {
     // Volume from the (averaged) strain increment: V <- V (1 + tr de) to first order, exactly as det(I + dt L)
     // when nothing is averaged.
     const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
+    if (closure && open(p)) {
+      // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
+      // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
+      const double opening = std::log(P.volume[p] * initial_density_[P.material[p]] / P.mass[p]);
+      const double closing = std::min(-trace(de), opening);
+      if (closing > 0.0)
+        for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
+    }
     P.volume[p] *= F.template topLeftCorner<Dim, Dim>().determinant();
     if (max_volume_ratio > 0.0)
       P.volume[p] = std::min(P.volume[p], max_volume_ratio * P.mass[p] / initial_density_[P.material[p]]);
@@ -898,6 +907,7 @@ void Model<Dim>::update_stress() {
     StressUpdate batch;
     batch.index = list.data();
     batch.count = static_cast<int>(list.size());
+
     batch.stress = P.stress.data();
     batch.strain_increment = strain_increment_.data();
     batch.plastic_strain = P.plastic_strain.data();

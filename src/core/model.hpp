@@ -42,6 +42,12 @@ struct ModelSettings {
   // the tension apex carries no stress and would otherwise swell without bound where the soil breaks
   // up (30x seen on a failing slope), shrinking the time step through its falling density.
   double max_dilation = 2.0;
+  // Crack closure for materials without tensile strength (Material::tensionless): a particle whose
+  // volume exceeds its stress-free one m / rho_0 has opened through the tension cut-off; compressing
+  // it closes that opening first, without raising its mean stress (shear still loads it). Without it
+  // the elastic law resists closing what opened freely, so every load cycle opens the soil further
+  // (ratcheting dilation: a shaking-table slope doubled its volume at the wall).
+  bool crack_closure = true;
   bool profile = false;                    // time each stage of the step (Model::stage_times)
 };
 
@@ -181,6 +187,16 @@ class Model {
   template <class Shape>
   std::vector<Stencil<Dim, Shape::K>>& stencils();
   [[noreturn]] void fail(std::size_t p, const std::string& what) const;
+  // Open: a particle of a tensionless material looser than its initial density (crack closure).
+  bool open(std::size_t p) const {
+    const int m = particles_.material[p];
+    return settings_.crack_closure && tensionless_[m] &&
+           particles_.volume[p] * initial_density_[m] > (1.0 + 1e-9) * particles_.mass[p];
+  }
+  // Speed of the fastest signal a particle carries: its p-wave plus its own speed.
+  double signal_speed(std::size_t p) const {
+    return std::sqrt(p_wave_modulus_[particles_.material[p]] / particles_.density(p)) + particles_.v[p].norm();
+  }
 
   ModelSettings<Dim> settings_;
   Grid<Dim> grid_;
@@ -188,6 +204,7 @@ class Model {
   std::vector<std::shared_ptr<const Material>> materials_;
   std::vector<double> p_wave_modulus_;  // per material
   std::vector<double> initial_density_;  // per material
+  std::vector<char> tensionless_;        // per material: Material::tensionless
   std::vector<Body> bodies_;
   std::vector<std::shared_ptr<Fix<Dim>>> fixes_;
   std::vector<RigidMotion<Dim>> motion_;  // per body; used by rigid ones

@@ -40,6 +40,7 @@ class DruckerPrager : public Material {
   double bulk_modulus() const override { return elastic_.bulk(); }
   const DruckerPragerConstants& constants() const { return c_; }
   void update_stress(const StressUpdate& batch) const override;
+  bool tensionless() const override { return p_.tension == 0.0; }
 
   struct Result {
     Sym stress;

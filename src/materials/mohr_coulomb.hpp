@@ -34,6 +34,7 @@ class MohrCoulomb : public Material {
   double bulk_modulus() const override { return elastic_.bulk(); }
   const MohrCoulombParameters& parameters() const { return p_; }
   void update_stress(const StressUpdate& batch) const override;
+  bool tensionless() const override { return p_.tension == 0.0; }
 
   // Which return the last integrate() made.
   enum class Return { Elastic, Face, CompressionEdge, ExtensionEdge, Apex, Tension, TensionEdge, TensionApex, Mixed };
