@@ -8,11 +8,17 @@
 -- out/mesh_sensitivity/cell_<size>/ (do not pass --out: it would send all runs to one directory);
 -- the table goes to out/mesh_sensitivity/mesh_sensitivity.csv.
 --
+-- --set reuse=true takes the summary of a run already made at the same duration (an interrupted study
+-- goes on where it stopped; runs made by hand with shaking_table.lua --out out/mesh_sensitivity/cell_<size>
+-- count too).
+--
 --   seismpm scenarios/mesh_sensitivity.lua [--set cells=0.0075,0.00535714,0.00375] [--set duration=14]
+--                                          [--set reuse=true]
 
 local cells_text = mpm.param("cells", string.format("%.8g,%.8g,%.8g", 0.9 / 120, 0.9 / 168, 0.9 / 240))  -- m
 local duration = mpm.param("duration", 14.0)
 local check = mpm.param("check", false)   -- assert the runs are consistent (ctest)
+local reuse = mpm.param("reuse", false)   -- take a finished run's summary.txt instead of running it again
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 local base_out = mpm.out_dir("out/mesh_sensitivity")
 
@@ -20,8 +26,32 @@ local cells = {}
 for c in tostring(cells_text):gmatch("[^,]+") do cells[#cells + 1] = tonumber(c) end
 assert(#cells > 0, "--set cells must be a comma-separated list of cell sizes (m)")
 
+local function read_summary(cell)
+  local f = io.open(string.format("%s/cell_%g/summary.txt", base_out, cell))
+  if not f then return nil end
+  local text = f:read("a")
+  f:close()
+  local shaken = tonumber(text:match("maximum total displacement at ([%d%.]+) s of shaking"))
+  if not shaken or math.abs(shaken - duration) > 0.05 then return nil end  -- another duration: run again
+  return {
+    cell = cell,
+    particles = tonumber(text:match("soil particles: (%d+)")),
+    u_max = tonumber(text:match("maximum total displacement at [%d%.]+ s of shaking: ([%d%.]+) m")),
+    crest_uy = tonumber(text:match("point 1 %(crest%) uy = ([-%d%.]+) m")),
+    face_ux = tonumber(text:match("point 2 %(face%) ux = ([-%d%.]+) m")),
+    wall = tonumber(text:match("wall time: (%d+) s")),
+  }
+end
+
 -- Each run is the scenario itself, with its parameters overridden.
 local function run(cell)
+  if reuse then
+    local done = read_summary(cell)
+    if done then
+      print(string.format("cell %g m: reusing %s/cell_%g/summary.txt", cell, base_out, cell))
+      return done
+    end
+  end
   local saved = mpm.param
   local overrides = { cell = cell, duration = duration, every = duration, verbose = false, check = false }
   mpm.param = function(name, default)
@@ -35,17 +65,9 @@ local function run(cell)
   mpm.param, mpm.out_dir = saved, saved_out
   if not ok then error(err, 0) end
   -- The scenario's summary has what we need.
-  local f = assert(io.open(string.format("%s/cell_%g/summary.txt", base_out, cell)))
-  local text = f:read("a")
-  f:close()
-  return {
-    cell = cell,
-    particles = tonumber(text:match("soil particles: (%d+)")),
-    u_max = tonumber(text:match("maximum total displacement at [%d%.]+ s of shaking: ([%d%.]+) m")),
-    crest_uy = tonumber(text:match("point 1 %(crest%) uy = ([-%d%.]+) m")),
-    face_ux = tonumber(text:match("point 2 %(face%) ux = ([-%d%.]+) m")),
-    wall = os.time() - start,
-  }
+  local r = assert(read_summary(cell), "the run wrote no summary.txt")
+  r.wall = os.time() - start
+  return r
 end
 
 local results = {}

@@ -865,7 +865,6 @@ void Model<Dim>::update_stress() {
   }
   const bool average = settings_.cell_volumetric_strain;
   const double max_volume_ratio = settings_.max_dilation;
-  const bool closure = settings_.crack_closure;
   if (average) accumulate_cell_dilation();
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
@@ -888,7 +887,7 @@ void Model<Dim>::update_stress() {
     // Volume from the (averaged) strain increment: V <- V (1 + tr de) to first order, exactly as det(I + dt L)
     // when nothing is averaged.
     const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
-    if (closure && open(p)) {
+    if (opened(p)) {
       // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
       // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
       const double opening = std::log(P.volume[p] * initial_density_[P.material[p]] / P.mass[p]);
@@ -907,7 +906,6 @@ void Model<Dim>::update_stress() {
     StressUpdate batch;
     batch.index = list.data();
     batch.count = static_cast<int>(list.size());
-
     batch.stress = P.stress.data();
     batch.strain_increment = strain_increment_.data();
     batch.plastic_strain = P.plastic_strain.data();

@@ -187,8 +187,9 @@ class Model {
   template <class Shape>
   std::vector<Stencil<Dim, Shape::K>>& stencils();
   [[noreturn]] void fail(std::size_t p, const std::string& what) const;
-  // Open: a particle of a tensionless material looser than its initial density (crack closure).
-  bool open(std::size_t p) const {
+  // A particle of a tensionless material looser than its initial density: opened by the tension
+  // cut-off, to be closed first when compressed (crack closure).
+  bool opened(std::size_t p) const {
     const int m = particles_.material[p];
     return settings_.crack_closure && tensionless_[m] &&
            particles_.volume[p] * initial_density_[m] > (1.0 + 1e-9) * particles_.mass[p];
