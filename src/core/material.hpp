@@ -35,8 +35,8 @@ class Material {
   virtual double bulk_modulus() const = 0;
   virtual void update_stress(const StressUpdate& batch) const = 0;
   // True when the material can carry no tension at all (a tension cut-off at zero). The kernel then
-  // treats a particle looser than the initial density as open (a crack, grains apart): stress-free
-  // until it is compressed back to that density (ModelSettings::crack_closure).
+  // treats a particle looser than the initial density as opened (a crack): compression closes it
+  // without mean stress before loading the material (ModelSettings::crack_closure).
   virtual bool tensionless() const { return false; }
 
  private:

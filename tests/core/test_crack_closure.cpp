@@ -3,35 +3,13 @@
 // elastically from zero.
 #include <catch2/catch.hpp>
 
-#include "core/fix.hpp"
 #include "materials/mohr_coulomb.hpp"
 #include "support/models.hpp"
+#include "support/nodal_velocity.hpp"
 
 using namespace seismpm;
 
 namespace {
-
-// Drives the grid with a uniform dilation v = rate (x - centre): every particle sees the same
-// volumetric strain rate (rate per axis), no shear.
-template <int Dim>
-class UniformDilation : public Fix<Dim> {
- public:
-  explicit UniformDilation(Vec<Dim> centre) : centre_(centre) {}
-  std::string_view name() const override { return "uniform_dilation"; }
-  void nodal_velocities(Model<Dim>& m, VelocityStage stage) override {
-    auto& g = m.grid();
-    for (int i = 0; i < g.node_count(); ++i) {
-      if (!(g.mass[i] > m.mass_threshold())) continue;
-      const Vec<Dim> v = rate * (g.node_position(i) - centre_);
-      if (stage == VelocityStage::Updated) g.acceleration[i] = (v - g.momentum[i] / g.mass[i]) / m.dt();
-      g.velocity[i] = v;
-    }
-  }
-  double rate = 0.0;  // 1/s
-
- private:
-  Vec<Dim> centre_;
-};
 
 struct Cycle {
   double at_initial_volume;  // largest |stress| when back at the initial volume (Pa)
@@ -54,8 +32,12 @@ Cycle open_close_compress(bool crack_closure) {
   const int mat = m.add_material(std::make_shared<MohrCoulomb>(mc));
   const int body = m.add_body("soil", 2);
   m.fill_box(body, mat, Vec<2>::Constant(0.8), Vec<2>::Constant(1.2));
-  auto drive = std::make_shared<UniformDilation<2>>(Vec<2>::Constant(1.0));
+  // A uniform dilation v = rate (x - centre): every particle sees the same volumetric strain rate.
+  auto drive = std::make_shared<test::NodalVelocityField<2>>(nullptr);
   m.add_fix(drive);
+  auto dilate = [&](double rate) {
+    drive->field = [rate](const Vec<2>& x) { return Vec<2>(rate * (x - Vec<2>::Constant(1.0))); };
+  };
   auto& P = m.particles();
   auto volume = [&] {
     double v = 0.0;
@@ -69,11 +51,11 @@ Cycle open_close_compress(bool crack_closure) {
     return worst;
   };
   const double rate = 0.1, open_time = 0.2, extra_time = 0.02;  // 2 % per axis open, 0.2 % per axis more
-  drive->rate = rate;
+  dilate(rate);
   m.run(open_time);
   CHECK(volume() / v0 == Approx(std::exp(2 * rate * open_time)).epsilon(1e-3));
   CHECK(largest_stress() < 1e-6 * mc.young);  // at the tension cut-off while opening
-  drive->rate = -rate;
+  dilate(-rate);
   m.run(open_time);
   Cycle c;
   c.at_initial_volume = largest_stress();
