@@ -98,7 +98,7 @@ print(string.format("rock: %d particles (%.0f m2 in section: %.1f million m3 for
                     pile:count(), area, area * 500 / 1e6, h))
 
 local dir = mpm.out_dir("out/chichi_landslide")
-m:output{ dir = dir, every = mpm.param("every", 5.0), at_run_end = false }  -- runs go in 1-s chunks
+m:output{ dir = dir, every = mpm.param("every", 5.0) }
 if record == "" then vh:write_csv(dir .. "/record.csv") end
 
 -- Surface profile: the highest rock particle in each cell column.
@@ -134,8 +134,9 @@ sample()
 local weakened = false
 local last = front0
 local speed = 0
-m:dynamic_phase{ duration = 1.0 }
-repeat
+-- Every second of the phase, between steps: sample the front, and weaken the bedding once the
+-- strong motion has arrived.
+m:dynamic_phase{ duration = duration, every = 1.0, call = function()
   local f = sample()
   speed = f - last  -- m/s: samples 1 s apart
   last = f
@@ -145,11 +146,8 @@ repeat
     weakened = true
     print(string.format("t = %.1f s: the bedding weakens, friction %.3f -> %.3f", m:phase_time(), peak, residual))
   end
-  local left_time = duration - m:phase_time()
-  if left_time > 1e-9 then m:run{ duration = math.min(1.0, left_time) } end
-until left_time <= 1e-9
+end }
 
-m:write()  -- the final state on file
 local file = assert(io.open(dir .. "/front.csv", "w"))
 file:write(table.concat(rows, "\n"), "\n")
 file:close()

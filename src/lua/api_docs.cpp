@@ -143,12 +143,12 @@ const std::vector<ApiDoc>& api_docs() {
        "plastic state are kept. k0 (in (0, 3]): first set sigma_v = rho g depth (the overburden of the particles "
        "above, per grid column) and sigma_h = k0 sigma_v, then settle. Returns { time, steps, unbalanced, kinetic }.",
        "local eq = m:gravity_phase{ damping = 0.7, tolerance = 0.005, max_time = 5 }; print(eq.time, eq.steps)"},
-      {"model:dynamic_phase", "m:dynamic_phase{ duration, damping = 0 }",
+      {"model:dynamic_phase", "m:dynamic_phase{ duration, damping = 0, every, call }",
        "The shaking phase: inertia on, damping (default 0, in [0, 1)), rigid bodies follow their velocity histories, "
        "read at the phase time, which starts at zero now (so a record starts when the shaking starts). Phases can "
        "follow each other in any number; m:run{ duration } continues the current phase without restarting its "
-       "clock.",
-       "m:dynamic_phase{ duration = 14 }"},
+       "clock. every (s) and call (a function): as for m:run.",
+       "m:dynamic_phase{ duration = 14, every = 0.5, call = function(m) print(m:phase_time()) end }"},
       {"model:phase_time", "m:phase_time()", "Time since the current phase started (s); m:time() is the total.",
        "print(m:phase_time(), m:time())"},
       {"model:phase", "m:phase()", "The current phase's name: \"run\" before any phase, \"gravity\" or \"dynamic\".",
@@ -158,10 +158,13 @@ const std::vector<ApiDoc>& api_docs() {
        "it is on file already; for scripts that run in chunks with at_run_end = false.",
        "m:write()"},
       {"model:step", "m:step(n = 1)", "Takes n explicit steps.", "m:step(10)"},
-      {"model:run", "m:run{ duration, damping }",
+      {"model:run", "m:run{ duration, damping, every, call }",
        "Runs for duration (s) more, with a progress display; damping = local damping coefficient in [0, 1) for this "
-       "and later runs (default: unchanged, 0 at first). Ctrl-C stops at the next step boundary with the model intact.",
-       "m:run{ duration = 1.0, damping = 0.7 }"},
+       "and later runs (default: unchanged, 0 at first). call(m) runs every `every` seconds of simulated time (hit "
+       "exactly) and at the end of the run, between steps: to sample or print something, or to end the run early by "
+       "returning true; it may not step the model itself. Ctrl-C stops at the next step boundary with the model "
+       "intact.",
+       "m:run{ duration = 60, every = 1, call = function(m) return m:energy().kinetic < 1 end }"},
       {"model:time", "m:time()", "Simulated time (s), total across phases.", "print(m:time())"},
       {"model:steps", "m:steps()", "Number of steps taken.", "print(m:steps())"},
       {"model:dt", "m:dt()", "The last time step (s), or the one the CFL condition allows before the first step.",

@@ -237,22 +237,75 @@ LocalDamping<2>& damping_of(ModelHandle& h) {
   return *h.damping;
 }
 
+PeriodicCall read_periodic_call(Args& a) {
+  PeriodicCall call;
+  const bool has_every = a.has("every"), has_call = a.has("call");
+  if (has_every != has_call)
+    throw Error(has_every ? "key 'every' needs key 'call' (a function to call every `every` s)"
+                          : "key 'call' needs key 'every' (s of simulated time between calls)");
+  if (!has_call) return call;
+  call.every = Args::positive("every", a.number("every"), "s");
+  if (a.push("call") != LUA_TFUNCTION) {
+    lua_pop(a.state(), 1);
+    throw Error("key 'call' must be a function, function(m) ... end");
+  }
+  call.function = luaL_ref(a.state(), LUA_REGISTRYINDEX);
+  return call;
+}
+
+void release(lua_State* L, PeriodicCall& call) {
+  luaL_unref(L, LUA_REGISTRYINDEX, call.function);
+  call.function = LUA_NOREF;
+}
+
+namespace {
+
+// Calls the run's function with the model (stack index 1); true when it asks the run to stop.
+bool invoke(lua_State* L, const PeriodicCall& call, double t) {
+  lua_rawgeti(L, LUA_REGISTRYINDEX, call.function);
+  lua_pushvalue(L, 1);
+  if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
+    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error";
+    lua_pop(L, 1);
+    std::ostringstream os;
+    os << "the run's call failed at t = " << t << " s: " << msg;
+    throw Error(os.str());
+  }
+  const bool stop = lua_toboolean(L, -1);
+  lua_pop(L, 1);
+  return stop;
+}
+
+}  // namespace
+
 // Steps until `duration` more seconds have passed (or max_steps, or `done()` says so after a step),
-// with progress (plus `extra()`), Ctrl-C, outputs at their times and, for runs, the final state on
-// file. Returns whether `done` ended it.
+// with progress (plus `extra()`), Ctrl-C, outputs at their times, `call` every call.every seconds
+// and at the end, and, for runs, the final state on file. Returns whether `done` or the call ended it.
 bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,
-             const std::function<bool()>& done, const std::function<std::string()>& extra) {
+             const std::function<bool()>& done, const std::function<std::string()>& extra,
+             const PeriodicCall& call) {
   Session& s = session(L);
   Model<2>& m = h.model;
+  if (h.running)
+    throw Error("a run's call may not step the model (m:run, m:step or a phase): return true from it to end the run");
+  h.running = true;
+  struct Running {
+    bool& flag;
+    ~Running() { flag = false; }
+  } running{h.running};
   Progress progress(stderr, s.progress);
-  const double end = m.time() + duration;
+  const double start = m.time();
+  const double end = start + duration;
   progress.start(h.phase, m.time(), end, m.particles().size(), m.steps());
   s.interrupted = false;
   long taken = 0;
-  bool stopped = false;
+  bool stopped = false, stopped_by_call = false;
+  long calls = 0;  // the calls made; the next is due at start + (calls + 1) every
+  const auto next_call = [&] { return call.active() ? start + double(calls + 1) * call.every : INFINITY; };
   try {
     // Steps shorter than 1e-9 of the duration are round-off, not time.
     const double slack = std::isfinite(duration) ? 1e-9 * duration : 0.0;
+    const double call_slack = 1e-9 * call.every;
     while (end - m.time() > slack && taken < max_steps) {
       if (s.interrupted) {
         lua_sethook(L, nullptr, 0, 0);  // the Ctrl-C hook would replace this message in the error handler
@@ -261,14 +314,19 @@ bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
         os << "interrupted (Ctrl-C) at t = " << m.time() << " s, step " << m.steps() << "; the model is intact";
         throw Error(os.str());
       }
-      // Land exactly on the next output and probe times.
-      double until = end;
+      // Land exactly on the next output, probe and call times.
+      double until = std::min(end, next_call());
       if (h.output) until = std::min(until, h.output->next_time());
       for (const auto& p : h.probes) until = std::min(until, p->next_sample_time());
       m.step(until - m.time());
       ++taken;
       if (h.output && h.output->due(m.time())) h.output->write(m, h.probes, h.phase);
-      const bool finished = done && done();
+      bool finished = done && done();
+      if (call.active() && (next_call() - m.time() <= call_slack || end - m.time() <= slack)) {
+        while (next_call() - m.time() <= call_slack) ++calls;
+        stopped_by_call = invoke(L, call, m.time());
+        finished = finished || stopped_by_call;
+      }
       progress.update(m.time(), m.steps(), m.dt(), extra ? extra() : std::string());
       if (finished) {
         stopped = true;
@@ -283,7 +341,8 @@ bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
   for (auto& p : h.probes) p->sample(m);
   // The end of a run is always on file, so ParaView and probes.csv show the final state.
   if (final_output && h.write_at_run_end && h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
-  progress.finish(m.time(), m.steps(), stopped || !done ? "done" : "stopped at its time limit");
+  progress.finish(m.time(), m.steps(),
+                  stopped_by_call ? "stopped by its call" : stopped || !done ? "done" : "stopped at its time limit");
   return stopped;
 }
 
@@ -302,14 +361,21 @@ int model_step(lua_State* L) {
 
 int model_run(lua_State* L) {
   ModelHandle& h = self(L);
-  Args a(L, 2, {"duration", "damping"});
+  Args a(L, 2, {"duration", "damping", "every", "call"});
   const double duration = Args::positive("duration", a.number("duration"), "s");
   const auto damping = a.optional_number("damping");
   if (damping) {
     Args::in_range("damping", *damping, 0.0, 1.0, true);
     damping_of(h).set_alpha(*damping);
   }
-  run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {});
+  PeriodicCall call = read_periodic_call(a);
+  try {
+    run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
+  } catch (...) {
+    release(L, call);
+    throw;
+  }
+  release(L, call);
   return 0;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "binding.hpp"
 #include "core/history.hpp"
 #include "core/local_damping.hpp"
 #include "core/material.hpp"
@@ -34,6 +35,7 @@ struct ModelHandle {
   std::unique_ptr<Output<2>> output;
   std::string phase = "run";
   bool write_at_run_end = true;  // m:output{ at_run_end }: the state at the end of every run on file
+  bool running = false;          // a run is stepping: its call may not start another
 
   int material(const std::shared_ptr<const Material>& m) {
     auto it = material_index.find(m.get());
@@ -77,9 +79,21 @@ void open_help(lua_State* L, int mpm);
 void open_phases(lua_State* L);
 void open_plot(lua_State* L, int mpm);
 
-// Steps the model for `duration` s (see model_binding.cpp); true when `done` ended the run.
+// A Lua function that a run calls every `every` seconds of simulated time and at its end
+// (m:run{ every, call }, m:dynamic_phase{ every, call }); the run stops when it returns true.
+struct PeriodicCall {
+  double every = 0;
+  int function = LUA_NOREF;  // a registry reference to the function
+  bool active() const { return every > 0; }
+};
+// Reads `every` and `call` (both or neither) from a run's arguments; release() frees the reference.
+PeriodicCall read_periodic_call(Args& a);
+void release(lua_State* L, PeriodicCall& call);
+
+// Steps the model for `duration` s (see model_binding.cpp); true when `done` or the call ended the run.
 bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,
-             const std::function<bool()>& done, const std::function<std::string()>& extra);
+             const std::function<bool()>& done, const std::function<std::string()>& extra,
+             const PeriodicCall& call = {});
 // The model's local damping fix (created at alpha 0 on first use).
 LocalDamping<2>& damping_of(ModelHandle& h);
 

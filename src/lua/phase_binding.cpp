@@ -32,6 +32,7 @@ int model_gravity_phase(lua_State* L) {
   if (auto k0 = a.optional_number("k0")) g.k0 = Args::in_range("k0", *k0, 1e-6, 3.0, false);
   Model<2>& m = h.model;
   if (m.particles().size() == 0) throw Error("the model has no particles");
+  if (h.running) throw Error("a run's call may not start a phase");
 
   h.phase = "gravity";
   m.begin_phase(false);  // rigid bodies at rest
@@ -83,17 +84,25 @@ int model_gravity_phase(lua_State* L) {
   return 1;
 }
 
-// m:dynamic_phase{ duration, damping = 0 }
+// m:dynamic_phase{ duration, damping = 0, every, call }
 int model_dynamic_phase(lua_State* L) {
   ModelHandle& h = self(L);
-  Args a(L, 2, {"duration", "damping"});
+  Args a(L, 2, {"duration", "damping", "every", "call"});
   const double duration = Args::positive("duration", a.number("duration"), "s");
   const double damping = Args::in_range("damping", a.number("damping", 0.0), 0.0, 1.0, true);
   if (h.model.particles().size() == 0) throw Error("the model has no particles");
+  if (h.running) throw Error("a run's call may not start a phase");
+  PeriodicCall call = read_periodic_call(a);
   h.phase = "dynamic";
   h.model.begin_phase(true);  // histories start now
   damping_of(h).set_alpha(damping);
-  run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {});
+  try {
+    run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
+  } catch (...) {
+    release(L, call);
+    throw;
+  }
+  release(L, call);
   return 0;
 }
 

@@ -41,6 +41,63 @@ TEST_CASE("a free-falling block in Lua drops 0.5 g t^2", "[lua][model]") {
   CHECK(error == "");
 }
 
+TEST_CASE("a run's call comes at its times, takes the same steps as chunked runs, and can end the run", "[lua][model]") {
+  LuaFixture f;
+  const std::string error = f.error_of(std::string(kBlock) + R"(
+    local function fresh()
+      local m2 = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.05 }
+      local b2 = m2:body{ name = "block", material = mat, shape = mpm.shape.rectangle{ 0.3, 0.5, 0.7, 0.9 } }
+      return m2, b2
+    end
+    -- Calls every 0.05 s and at the end (0.12 is not a multiple).
+    local times = {}
+    m:run{ duration = 0.12, every = 0.05, call = function(model) times[#times + 1] = model:time() end }
+    assert(#times == 3, "calls " .. #times)
+    for k, t in ipairs{ 0.05, 0.10, 0.12 } do assert(math.abs(times[k] - t) < 1e-12, "call " .. k .. " at " .. times[k]) end
+    -- The same steps as a script that runs in chunks: bit-identical state.
+    local a, ablk = fresh()
+    a:run{ duration = 0.05 }; a:run{ duration = 0.05 }; a:run{ duration = 0.02 }
+    assert(a:steps() == m:steps(), "steps " .. a:steps() .. " vs " .. m:steps())
+    local y1, y2 = blk:field("y"), ablk:field("y")
+    for i = 1, #y1 do assert(y1[i] == y2[i], "particle " .. i .. " differs") end
+    -- Returning true ends the run at that call.
+    local b = fresh()
+    b:run{ duration = 1, every = 0.02, call = function(model) return model:time() > 0.05 end }
+    assert(math.abs(b:time() - 0.06) < 1e-12, "stopped at " .. b:time())
+    -- The dynamic phase takes them too; its calls see the phase clock.
+    local c = fresh()
+    c:run{ duration = 0.01 }
+    local phase_times = {}
+    c:dynamic_phase{ duration = 0.04, every = 0.02, call = function(model) phase_times[#phase_times + 1] = model:phase_time() end }
+    assert(#phase_times == 2 and math.abs(phase_times[2] - 0.04) < 1e-12, "phase calls " .. #phase_times)
+  )");
+  CHECK(error == "");
+}
+
+TEST_CASE("a run's call: bad keys and failing calls are named, and the model stays usable", "[lua][errors]") {
+  LuaFixture f;
+  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, every = 0.1 }"), Catch::Contains("key 'every' needs key 'call'"));
+  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, call = print }"), Catch::Contains("key 'call' needs key 'every'"));
+  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, every = 0.1, call = 5 }"),
+             Catch::Contains("key 'call' must be a function"));
+  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, every = -1, call = print }"),
+             Catch::Contains("key 'every' must be > 0"));
+  CHECK_THAT(f.error_of(std::string(kBlock) + "m:dynamic_phase{ duration = 1, every = 0.1 }"),
+             Catch::Contains("key 'every' needs key 'call'"));
+  const std::string error = f.error_of(std::string(kBlock) + R"(
+    local ok, err = pcall(function() m:run{ duration = 0.1, every = 0.02, call = function() error("no data here") end } end)
+    assert(not ok and err:find("the run's call failed at t = 0.02") and err:find("no data here"), err)
+    ok, err = pcall(function() m:run{ duration = 0.1, every = 0.02, call = function(model) model:run{ duration = 1 } end } end)
+    assert(not ok and err:find("may not step the model"), err)
+    ok, err = pcall(function() m:run{ duration = 0.1, every = 0.02, call = function(model) model:dynamic_phase{ duration = 1 } end } end)
+    assert(not ok and err:find("may not start a phase"), err)
+    local t = m:time()
+    m:run{ duration = 0.01 }
+    assert(math.abs(m:time() - t - 0.01) < 1e-12, "the model runs on after a failed call")
+  )");
+  CHECK(error == "");
+}
+
 TEST_CASE("a concave polygon is filled exactly where it is", "[lua][shape]") {
   LuaFixture f;
   const std::string error = f.error_of(R"(
