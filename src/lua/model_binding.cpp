@@ -237,25 +237,24 @@ LocalDamping<2>& damping_of(ModelHandle& h) {
   return *h.damping;
 }
 
-PeriodicCall read_periodic_call(Args& a) {
-  PeriodicCall call;
+PeriodicCall::PeriodicCall(Args& a) {
   const bool has_every = a.has("every"), has_call = a.has("call");
   if (has_every != has_call)
     throw Error(has_every ? "key 'every' needs key 'call' (a function to call every `every` s)"
                           : "key 'call' needs key 'every' (s of simulated time between calls)");
-  if (!has_call) return call;
-  call.every = Args::positive("every", a.number("every"), "s");
+  if (!has_call) return;
+  const double interval = Args::positive("every", a.number("every"), "s");
   if (a.push("call") != LUA_TFUNCTION) {
     lua_pop(a.state(), 1);
     throw Error("key 'call' must be a function, function(m) ... end");
   }
-  call.function = luaL_ref(a.state(), LUA_REGISTRYINDEX);
-  return call;
+  state = a.state();
+  every = interval;
+  function = luaL_ref(state, LUA_REGISTRYINDEX);
 }
 
-void release(lua_State* L, PeriodicCall& call) {
-  luaL_unref(L, LUA_REGISTRYINDEX, call.function);
-  call.function = LUA_NOREF;
+PeriodicCall::~PeriodicCall() {
+  if (state) luaL_unref(state, LUA_REGISTRYINDEX, function);
 }
 
 namespace {
@@ -368,14 +367,8 @@ int model_run(lua_State* L) {
     Args::in_range("damping", *damping, 0.0, 1.0, true);
     damping_of(h).set_alpha(*damping);
   }
-  PeriodicCall call = read_periodic_call(a);
-  try {
-    run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
-  } catch (...) {
-    release(L, call);
-    throw;
-  }
-  release(L, call);
+  const PeriodicCall call(a);
+  run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
   return 0;
 }
 

@@ -82,13 +82,18 @@ void open_plot(lua_State* L, int mpm);
 // A Lua function that a run calls every `every` seconds of simulated time and at its end
 // (m:run{ every, call }, m:dynamic_phase{ every, call }); the run stops when it returns true.
 struct PeriodicCall {
+  PeriodicCall() = default;
+  // Reads `every` and `call` (both or neither) from a run's arguments.
+  explicit PeriodicCall(Args& a);
+  ~PeriodicCall();
+  PeriodicCall(const PeriodicCall&) = delete;
+  PeriodicCall& operator=(const PeriodicCall&) = delete;
+  bool active() const { return every > 0; }
+
+  lua_State* state = nullptr;  // set when a function is held
   double every = 0;
   int function = LUA_NOREF;  // a registry reference to the function
-  bool active() const { return every > 0; }
 };
-// Reads `every` and `call` (both or neither) from a run's arguments; release() frees the reference.
-PeriodicCall read_periodic_call(Args& a);
-void release(lua_State* L, PeriodicCall& call);
 
 // Steps the model for `duration` s (see model_binding.cpp); true when `done` or the call ended the run.
 bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,

@@ -92,17 +92,11 @@ int model_dynamic_phase(lua_State* L) {
   const double damping = Args::in_range("damping", a.number("damping", 0.0), 0.0, 1.0, true);
   if (h.model.particles().size() == 0) throw Error("the model has no particles");
   if (h.running) throw Error("a run's call may not start a phase");
-  PeriodicCall call = read_periodic_call(a);
+  const PeriodicCall call(a);
   h.phase = "dynamic";
   h.model.begin_phase(true);  // histories start now
   damping_of(h).set_alpha(damping);
-  try {
-    run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
-  } catch (...) {
-    release(L, call);
-    throw;
-  }
-  release(L, call);
+  run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
   return 0;
 }
 
