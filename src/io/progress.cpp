@@ -26,10 +26,12 @@ Progress::Mode Progress::detect(std::FILE* out, bool quiet) {
   return isatty(fileno(out)) ? Mode::Terminal : Mode::Log;
 }
 
-void Progress::start(const std::string& label, double t_start, double t_end, std::size_t particles, long step) {
+void Progress::start(const std::string& label, double t_start, double t_end, std::size_t particles, long step,
+                     bool open_end) {
   label_ = label;
   t_start_ = t_start;
   t_end_ = t_end;
+  open_end_ = open_end;
   particles_ = particles;
   step_start_ = step;
   wall_start_ = last_print_ = std::chrono::steady_clock::now();
@@ -42,9 +44,9 @@ std::string Progress::line(double t, long step, double dt, const std::string& ex
   const double done = t_end_ > t_start_ ? (t - t_start_) / (t_end_ - t_start_) : 1.0;
   const double eta = done > 0 ? wall * (1.0 - done) / done : NAN;
   char buf[256];
-  std::snprintf(buf, sizeof buf, "[%s] t = %.4g / %.4g s  step %ld  dt %.3g s  %.3gM p-steps/s  ETA %s%s%s",
-                label_.c_str(), t, t_end_, step, dt, rate / 1e6, clock_text(eta).c_str(), extra.empty() ? "" : "  ",
-                extra.c_str());
+  std::snprintf(buf, sizeof buf, "[%s] t = %.4g %s %.4g s  step %ld  dt %.3g s  %.3gM p-steps/s  ETA %s%s%s%s",
+                label_.c_str(), t, open_end_ ? "/ at most" : "/", t_end_, step, dt, rate / 1e6,
+                open_end_ ? "<= " : "", clock_text(eta).c_str(), extra.empty() ? "" : "  ", extra.c_str());
   return buf;
 }
 

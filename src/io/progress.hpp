@@ -16,17 +16,23 @@ class Progress {
   static Mode detect(std::FILE* out, bool quiet);
 
   Progress(std::FILE* out, Mode mode) : out_(out), mode_(mode) {}
-  void start(const std::string& label, double t_start, double t_end, std::size_t particles, long step);
+  // open_end: the run may end before t_end (a gravity phase ends at equilibrium): the line says
+  // "at most" for the end time and the ETA.
+  void start(const std::string& label, double t_start, double t_end, std::size_t particles, long step,
+             bool open_end = false);
   void update(double t, long step, double dt, const std::string& extra = "");
   void finish(double t, long step, const std::string& how);
 
- private:
+  // The text of the progress line at time t.
   std::string line(double t, long step, double dt, const std::string& extra) const;
+
+ private:
 
   std::FILE* out_;
   Mode mode_;
   std::string label_;
   double t_start_ = 0, t_end_ = 0;
+  bool open_end_ = false;
   std::size_t particles_ = 0;
   long step_start_ = 0;
   std::chrono::steady_clock::time_point wall_start_, last_print_;

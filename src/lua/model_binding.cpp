@@ -295,7 +295,7 @@ bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
   Progress progress(stderr, s.progress);
   const double start = m.time();
   const double end = start + duration;
-  progress.start(h.phase, m.time(), end, m.particles().size(), m.steps());
+  progress.start(h.phase, m.time(), end, m.particles().size(), m.steps(), static_cast<bool>(done));
   s.interrupted = false;
   long taken = 0;
   bool stopped = false, stopped_by_call = false;
