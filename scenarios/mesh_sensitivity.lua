@@ -2,8 +2,9 @@
 -- particles): runs scenarios/shaking_table.lua at three cell sizes and prints, for each, the particle
 -- count, cell size, wall time, the maximum total displacement at the end of shaking and the two
 -- control points, then the spread. The cell sizes divide the 0.9 m box into 120, 168 and 240 cells,
--- so the walls lie on grid lines (2 x 2 particles per cell: 24.8k, 48.7k and 99.7k particles).
--- The fine runs are long on 2 cores (0.75 cm: 12 min; 0.375 cm: 1.9 hours): pick fewer with
+-- so the walls lie on grid lines (2 x 2 particles per cell: 24,820, 48,816 and 99,672 particles).
+-- The fine runs are long on 2 cores (measured: 0.75 cm 12-35 min, 0.536 cm 91 min, 0.375 cm 1.9 hours,
+-- depending on the machine; docs/validation.md has the study's results): pick fewer with
 -- --set cells=0.0075,0.0055 or shorten them with --set duration=4. Each run writes into
 -- out/mesh_sensitivity/cell_<size>/ (do not pass --out: it would send all runs to one directory);
 -- the table goes to out/mesh_sensitivity/mesh_sensitivity.csv.

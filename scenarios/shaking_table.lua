@@ -18,7 +18,7 @@
 --   seismpm scenarios/shaking_table.lua [--set cell=0.0125] [--set duration=14] [--set every=0.25]
 --                                       [--set record=FILE.csv] [--set check=true]
 
-local cell = mpm.param("cell", 0.0125)          -- m: 0.0125 gives about 9,000 soil particles
+local cell = mpm.param("cell", 0.0125)          -- m: 8,954 soil particles, 2-6 min on 2 cores
 local duration = mpm.param("duration", 14.0)    -- s of shaking
 local every = mpm.param("every", 0.25)          -- s between ParaView files
 local record = mpm.param("record", "data/table_velocity.csv")
