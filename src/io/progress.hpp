@@ -27,7 +27,6 @@ class Progress {
   std::string line(double t, long step, double dt, const std::string& extra) const;
 
  private:
-
   std::FILE* out_;
   Mode mode_;
   std::string label_;
