@@ -257,6 +257,12 @@ PeriodicCall::~PeriodicCall() {
   if (state) luaL_unref(state, LUA_REGISTRYINDEX, function);
 }
 
+void refuse_inside_a_run(const ModelHandle& h, const char* what) {
+  if (h.running)
+    throw Error(std::string("a run's call may not ") + what +
+                " (m:run, m:step or a phase): return true from it to end the run");
+}
+
 namespace {
 
 // Calls the run's function with the model (stack index 1); true when it asks the run to stop.
@@ -285,8 +291,7 @@ bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool
              const PeriodicCall& call) {
   Session& s = session(L);
   Model<2>& m = h.model;
-  if (h.running)
-    throw Error("a run's call may not step the model (m:run, m:step or a phase): return true from it to end the run");
+  refuse_inside_a_run(h, "step the model");
   h.running = true;
   struct Running {
     bool& flag;
@@ -362,12 +367,13 @@ int model_run(lua_State* L) {
   ModelHandle& h = self(L);
   Args a(L, 2, {"duration", "damping", "every", "call"});
   const double duration = Args::positive("duration", a.number("duration"), "s");
+  const PeriodicCall call(a);  // read first: a bad call leaves the damping as it was
+  refuse_inside_a_run(h, "step the model");
   const auto damping = a.optional_number("damping");
   if (damping) {
     Args::in_range("damping", *damping, 0.0, 1.0, true);
     damping_of(h).set_alpha(*damping);
   }
-  const PeriodicCall call(a);
   run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
   return 0;
 }

@@ -95,6 +95,10 @@ struct PeriodicCall {
   int function = LUA_NOREF;  // a registry reference to the function
 };
 
+// Throws when a run is stepping (its call tried to `what`: "step the model", "start a phase"); a
+// phase asks before it changes its state.
+void refuse_inside_a_run(const ModelHandle& h, const char* what);
+
 // Steps the model for `duration` s (see model_binding.cpp); true when `done` or the call ended the run.
 bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,
              const std::function<bool()>& done, const std::function<std::string()>& extra,

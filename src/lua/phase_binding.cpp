@@ -32,7 +32,7 @@ int model_gravity_phase(lua_State* L) {
   if (auto k0 = a.optional_number("k0")) g.k0 = Args::in_range("k0", *k0, 1e-6, 3.0, false);
   Model<2>& m = h.model;
   if (m.particles().size() == 0) throw Error("the model has no particles");
-  if (h.running) throw Error("a run's call may not start a phase");
+  refuse_inside_a_run(h, "start a phase");
 
   h.phase = "gravity";
   m.begin_phase(false);  // rigid bodies at rest
@@ -91,7 +91,7 @@ int model_dynamic_phase(lua_State* L) {
   const double duration = Args::positive("duration", a.number("duration"), "s");
   const double damping = Args::in_range("damping", a.number("damping", 0.0), 0.0, 1.0, true);
   if (h.model.particles().size() == 0) throw Error("the model has no particles");
-  if (h.running) throw Error("a run's call may not start a phase");
+  refuse_inside_a_run(h, "start a phase");
   const PeriodicCall call(a);
   h.phase = "dynamic";
   h.model.begin_phase(true);  // histories start now
