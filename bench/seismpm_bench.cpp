@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
         for (int k = 0; k < steps; ++k) m.step();
         const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
         rates.push_back(particles * steps / wall);
-        shared = m.shared_nodes().count();
+        shared = m.contact().nodes().count();
         if (profile && r == 0)
           for (const auto& [stage, seconds] : m.stage_times())
             std::printf("    %-20s %8.3f ms/step\n", stage, 1e3 * seconds / (steps + 5));

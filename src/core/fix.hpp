@@ -1,19 +1,16 @@
-// A feature that acts inside a step (damping, rigid bodies, contact, later absorbing boundaries)
-// attaches to named stages of the step, the way a LAMMPS "fix" does. Adding one never edits the loop.
+// A feature that acts inside a step (damping, test drivers, later absorbing boundaries) attaches to
+// named stages of the step, the way a LAMMPS "fix" does. Adding one never edits the loop. Each hook is
+// handed the step's context (dt, time, phase time) rather than reading the model's clock.
 #pragma once
 
 #include <string_view>
+
+#include "step_context.hpp"
 
 namespace seismpm {
 
 template <int Dim>
 class Model;
-
-// Which nodal velocity field a constraint stage sees.
-enum class VelocityStage {
-  Updated,   // v^L = mv/m + dt a, with a, just after the nodal force update
-  Remapped,  // the MUSL re-map of particle momentum (velocity only)
-};
 
 template <int Dim>
 class Fix {
@@ -21,13 +18,13 @@ class Fix {
   virtual ~Fix() = default;
   virtual std::string_view name() const = 0;
   // Before the grid is reset (assign prescribed velocities, read histories).
-  virtual void before_step(Model<Dim>&) {}
+  virtual void before_step(Model<Dim>&, const StepContext&) {}
   // After particles-to-grid, on the nodal out-of-balance forces (local damping).
-  virtual void nodal_forces(Model<Dim>&) {}
-  // After the grid fixities were applied to a nodal velocity field (prescribed nodes, contact).
-  virtual void nodal_velocities(Model<Dim>&, VelocityStage) {}
-  // After the stress update, when the step is complete.
-  virtual void after_step(Model<Dim>&) {}
+  virtual void nodal_forces(Model<Dim>&, const StepContext&) {}
+  // After contact and the grid fixities were applied to a nodal velocity field (prescribed nodes).
+  virtual void nodal_velocities(Model<Dim>&, const StepContext&, VelocityStage) {}
+  // After the stress update and the clock, when the step is complete.
+  virtual void after_step(Model<Dim>&, const StepContext&) {}
 };
 
 }  // namespace seismpm

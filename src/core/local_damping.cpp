@@ -19,7 +19,7 @@ void LocalDamping<Dim>::set_alpha(double alpha) {
 }
 
 template <int Dim>
-void LocalDamping<Dim>::nodal_forces(Model<Dim>& model) {
+void LocalDamping<Dim>::nodal_forces(Model<Dim>& model, const StepContext&) {
   if (alpha_ == 0.0) return;
   auto& g = model.grid();
   const int n = g.node_count();
@@ -36,15 +36,13 @@ void LocalDamping<Dim>::nodal_forces(Model<Dim>& model) {
   // Each contact field's own forces where fields meet; not where a rigid body is present: there the
   // out-of-balance force is what the contact must carry (damping it first would under-read the normal
   // force, the friction limit and the reaction), and the rigid body fixes the motion anyway.
-  auto& sh = model.shared_nodes();
-  const auto& rules = model.contact_rules();
+  auto& contact = model.contact();
+  auto& sh = contact.nodes();
   const int count = sh.count();
   constexpr int kSlots = SharedNodes<Dim>::kSlots;
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < count; ++k) {
-    bool rigid = false;
-    for (int j = 0; j < sh.fields(k); ++j) rigid = rigid || rules.rigid(sh.field_of_slot(k * kSlots + j));
-    if (rigid) continue;
+    if (contact.held(k)) continue;
     for (int j = 0; j < sh.fields(k); ++j) {
       const int s = k * kSlots + j;
       for (int d = 0; d < Dim; ++d) {

@@ -1,6 +1,6 @@
 // Local (Cundall) damping: each nodal force component is reduced by alpha times its magnitude
 // against the direction of the nodal velocity, f <- f - alpha |f| sign(v). Brings a body to
-// static equilibrium without changing the equilibrium itself (PHYSICS.md, "Local damping").
+// static equilibrium without changing the equilibrium itself.
 #pragma once
 
 #include "fix.hpp"
@@ -12,7 +12,7 @@ class LocalDamping : public Fix<Dim> {
  public:
   explicit LocalDamping(double alpha);
   std::string_view name() const override { return "local_damping"; }
-  void nodal_forces(Model<Dim>& model) override;
+  void nodal_forces(Model<Dim>& model, const StepContext& c) override;
   double alpha() const { return alpha_; }
   void set_alpha(double alpha);
 

@@ -1,4 +1,6 @@
 // A model: background grid, particles, materials, bodies and fixes, and the explicit MPM step.
+// Contact between bodies and rigid prescribed-velocity bodies live in src/contact (ContactFields),
+// which the step calls at its named stages only when contact fields exist.
 #pragma once
 
 #include <functional>
@@ -7,16 +9,17 @@
 #include <string>
 #include <vector>
 
-#include "contact.hpp"
+#include "body.hpp"
+#include "diagnostics.hpp"
+#include "contact/contact_fields.hpp"
 #include "fix.hpp"
 #include "grid.hpp"
 #include "material.hpp"
+#include "particle_support.hpp"
 #include "particles.hpp"
-#include "rigid_body.hpp"
-#include "scatter_schedule.hpp"
-#include "shared_nodes.hpp"
-#include "shape_function.hpp"
-#include "stencil.hpp"
+#include "stage_timer.hpp"
+#include "step_context.hpp"
+#include "time_step.hpp"
 #include "types.hpp"
 
 namespace seismpm {
@@ -51,18 +54,6 @@ struct ModelSettings {
   bool profile = false;                    // time each stage of the step (Model::stage_times)
 };
 
-struct Body {
-  std::string name;
-  int ppc = 2;         // particles per cell per axis at creation
-  bool rigid = false;  // prescribed-velocity particles (shaking-table box, sliding surface)
-  int material = -1;   // a rigid body's stand-in material (RigidMaterial)
-};
-
-struct ContactPair {
-  int a, b;
-  double friction;  // Coulomb mu >= 0
-};
-
 template <int Dim>
 class Model {
  public:
@@ -92,6 +83,8 @@ class Model {
                    const std::function<Vec<Dim>(const Vec<Dim>&)>& outward = {});
   std::size_t fill_box(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi);
   void add_fix(std::shared_ptr<Fix<Dim>> fix);
+  // Detaches a fix (a phase's damping or monitor when the phase ends); false when it was not attached.
+  bool remove_fix(const Fix<Dim>* fix);
 
   // --- phases ---
   // Starts a calculation phase now: histories of rigid bodies are read at the time since this call,
@@ -104,8 +97,8 @@ class Model {
   // When on, every step measures the out-of-balance force (before damping) over the free degrees of
   // freedom of nodes not held by a rigid body, and the external (gravity) force, as Euclidean norms.
   void set_balance_measure(bool on) { measure_balance_ = on; }
-  double out_of_balance_force() const { return out_of_balance_; }
-  double external_force() const { return external_force_; }
+  double out_of_balance_force() const { return balance_.out_of_balance; }
+  double external_force() const { return balance_.external; }
 
   // --- running ---
   // One explicit step, no longer than dt_max.
@@ -120,17 +113,15 @@ class Model {
   Particles<Dim>& particles() { return particles_; }
   const Particles<Dim>& particles() const { return particles_; }
   const std::vector<Body>& bodies() const { return bodies_; }
-  const std::vector<ContactPair>& contacts() const { return contacts_; }
-  const RigidMotion<Dim>& rigid_motion(int body) const { return motion_.at(body); }
-  // How contact fields interact, as of the last step.
-  const ContactRules& contact_rules() const { return rules_; }
-  // Per-field nodal data where contact fields meet (empty when every body shares one field).
-  SharedNodes<Dim>& shared_nodes() { return shared_; }
-  const SharedNodes<Dim>& shared_nodes() const { return shared_; }
+  const std::vector<ContactPair>& contacts() const { return contact_.pairs(); }
+  const RigidMotion<Dim>& rigid_motion(int body) const { return contact_.motion(body); }
+  // Contact fields, their rules and their per-field nodal data, as of the last step.
+  ContactFields<Dim>& contact() { return contact_; }
+  const ContactFields<Dim>& contact() const { return contact_; }
   const Material& material(int index) const { return *materials_[index]; }
   int material_count() const { return static_cast<int>(materials_.size()); }
   double time() const { return time_; }
-  double dt() const { return dt_; }
+  double dt() const { return dt_; }  // the last step's
   long steps() const { return steps_; }
   // Nodes with less mass than this are inactive for the step (no division by a tiny mass).
   double mass_threshold() const { return mass_threshold_; }
@@ -138,7 +129,7 @@ class Model {
   double stable_time_step() const;
 
   // Wall seconds spent in each stage of the step so far (when settings.profile is on).
-  const std::vector<std::pair<const char*, double>>& stage_times() const { return stage_times_; }
+  std::vector<std::pair<const char*, double>> stage_times() const { return timer_.times(); }
 
   // Current index of the particle created as number `id` (particles are reordered by sorting).
   std::size_t index_of(int id) const;
@@ -151,99 +142,77 @@ class Model {
   Vec<Dim> momentum() const;
 
  private:
+  // The step, stage by stage (model.cpp, transfer.cpp, stress_update.cpp).
+  StepContext next_step(double dt_max);
+  template <class Shape, bool Contact>
+  void step_with(const StepContext& c);
+  void prescribe_rigid_velocities(const StepContext& c);
   template <class Shape>
-  void step_with(double dt);
-  template <class Shape>
-  void compute_stencils();
-  template <class Shape, bool Multi>
+  void locate_particles();
+  template <class Shape, bool Contact>
   void particles_to_grid();
-  void update_nodal_velocities();
-  void constrain_velocities(VelocityStage stage);
-  template <class Shape, bool Multi>
-  void grid_to_particles();
-  template <class Shape, bool Multi>
+  template <bool Contact>
+  void nodal_forces(const StepContext& c);
+  template <bool Contact>
+  void update_nodal_velocities(const StepContext& c);
+  template <bool Contact>
+  void constrain(VelocityStage stage, const StepContext& c);
+  template <class Shape, bool Contact>
+  void grid_to_particles(const StepContext& c);
+  template <class Shape, bool Contact>
   void remap_momentum();
-  template <class Shape, bool Multi>
-  void update_stress();
-  // Contact fields: which bodies get their own nodal velocity, and how pairs interact.
-  void rebuild_contact_fields();
-  int new_body(const std::string& name, int ppc, bool rigid);
-  ContactPair* find_contact(int a, int b);  // the declared pair of a and b (either order), or null
-  void assign_rigid_velocities();
-  template <class Shape>
-  void mark_shared_nodes();
-  void update_shared_velocities();
-  void resolve_shared_nodes(VelocityStage stage);
-  void measure_balance();
-  void accumulate_cell_dilation();
-  // Index of the cell holding x, clamped to the grid; the slab axis varies slowest, so each scatter
-  // slab is a contiguous range of cells (and, after sorting, of particles).
-  int cell_index(const Vec<Dim>& x) const;
-  std::array<int, Dim> cell_coords(int cell) const;  // inverse of the cell index
-  void check_particles() const;
-  void sort_particles();
-  void rebuild_material_lists();
+  template <class Shape, bool Contact>
+  void update_stress(const StepContext& c);
+  template <class Shape, bool Contact>
+  void velocity_gradients(const StepContext& c);
+  template <bool Contact>
+  void average_volumetric_strain();
+  template <bool Contact>
+  void rotate_close_and_update_volume();
+  void integrate_materials();
+  void finish_step(const StepContext& c);
 
-  template <class Shape>
-  std::vector<Stencil<Dim, Shape::K>>& stencils();
+  // Upkeep (particle_order.cpp, particle_checks.cpp).
+  int new_body(const std::string& name, int ppc, bool rigid);
+  void rebuild_material_lists();
+  void sort_particles();
+  void check_particles() const;
   [[noreturn]] void fail(std::size_t p, const std::string& what) const;
   // A particle of a tensionless material looser than its initial density: opened by the tension
   // cut-off, to be closed first when compressed (crack closure).
   bool opened(std::size_t p) const {
     const int m = particles_.material[p];
-    return settings_.crack_closure && tensionless_[m] &&
-           particles_.volume[p] * initial_density_[m] > (1.0 + 1e-9) * particles_.mass[p];
-  }
-  // Speed of the fastest signal a particle carries: its p-wave plus its own speed.
-  double signal_speed(std::size_t p) const {
-    return std::sqrt(p_wave_modulus_[particles_.material[p]] / particles_.density(p)) + particles_.v[p].norm();
+    return settings_.crack_closure && constants_.tensionless[m] &&
+           particles_.volume[p] * constants_.initial_density[m] > (1.0 + 1e-9) * particles_.mass[p];
   }
 
   ModelSettings<Dim> settings_;
   Grid<Dim> grid_;
   Particles<Dim> particles_;
   std::vector<std::shared_ptr<const Material>> materials_;
-  std::vector<double> p_wave_modulus_;  // per material
-  std::vector<double> initial_density_;  // per material
-  std::vector<char> tensionless_;        // per material: Material::tensionless
+  MaterialConstants constants_;  // per material, what the step reads
   std::vector<Body> bodies_;
   std::vector<std::shared_ptr<Fix<Dim>>> fixes_;
-  std::vector<RigidMotion<Dim>> motion_;  // per body; used by rigid ones
-  std::vector<ContactPair> contacts_;
-  std::vector<int> field_of_body_;
-  std::vector<int> body_of_field_;
-  std::vector<char> body_rigid_;
-  ContactRules rules_;
-  bool fields_valid_ = false;
-  SharedNodes<Dim> shared_;
-  std::vector<Vec<Dim>> slot_reaction_;  // per slot: force a rigid field gave this step
-  std::vector<FieldSet> cell_fields_;     // per cell: the contact fields of its particles
-  std::vector<char> near_shared_;         // per cell: its particles may touch a shared node
+  ContactFields<Dim> contact_;
   double phase_start_ = 0.0;
   bool rigid_bodies_move_ = true;
   bool measure_balance_ = false;
-  double out_of_balance_ = 0.0, external_force_ = 0.0;
-  std::array<std::vector<double>, 2> balance_scratch_;  // per chunk of nodes: out-of-balance, external
+  Balance balance_;
+  std::vector<double> balance_scratch_;
 
   // Per-step scratch.
-  std::vector<Stencil<Dim, LinearShape::K>> linear_stencils_;
-  std::vector<Stencil<Dim, GimpShape::K>> gimp_stencils_;
+  ParticleSupport<Dim> support_;
   std::vector<Sym> strain_increment_;
   std::vector<Eigen::Vector3d> spin_;   // dt skw(L) as (w_xy, w_yz, w_xz)
-  std::vector<int> cell_of_;            // cell of each particle at the start of the step
   std::vector<double> cell_volume_, cell_dilation_;
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;
   mutable std::vector<int> index_of_id_;  // rebuilt on demand after a sort
-  ScatterSchedule schedule_;
-  int slab_axis_ = Dim - 1;  // the axis with the most cells: the most slabs to share among threads
+  StageTimer timer_;
 
-  std::vector<std::pair<const char*, double>> stage_times_;
-  void lap(const char* stage, double& since);
-
+  TimeStepControl time_step_;
   double time_ = 0.0;
   double dt_ = 0.0;
-  double first_dt_ = 0.0;
   long steps_ = 0;
   double mass_threshold_ = 0.0;
 };

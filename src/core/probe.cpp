@@ -33,7 +33,7 @@ double Probe<Dim>::next_sample_time() const {
 }
 
 template <int Dim>
-void Probe<Dim>::after_step(Model<Dim>& model) {
+void Probe<Dim>::after_step(Model<Dim>& model, const StepContext&) {
   // Sample when the step reached the next multiple of `every` (or every step when every = 0).
   if (every_ == 0.0 || model.time() >= next_sample_time() - 1e-9 * every_) sample(model);
 }

@@ -16,7 +16,7 @@ class Probe : public Fix<Dim> {
   // every: sampling interval in seconds of simulated time (0: every step).
   Probe(const Model<Dim>& model, std::string name, int particle_id, double every);
   std::string_view name() const override { return name_; }
-  void after_step(Model<Dim>& model) override;
+  void after_step(Model<Dim>& model, const StepContext& c) override;
 
   int particle_id() const { return id_; }
   double every() const { return every_; }

@@ -43,4 +43,16 @@ Mat3 embed(const Mat<Dim>& m) {
   return r;
 }
 
+// The in-plane (Dim x Dim) block of a symmetric tensor: what acts on the grid in plane strain.
+template <int Dim>
+Mat<Dim> in_plane(const Sym& s) {
+  Mat<Dim> m;
+  if constexpr (Dim == 2) {
+    m << s[0], s[3], s[3], s[1];
+  } else {
+    m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
+  }
+  return m;
+}
+
 }  // namespace seismpm

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "cases/moving_base_block.hpp"
-#include "core/contact.hpp"
+#include "contact/node_contact.hpp"
 #include "core/error.hpp"
 #include "core/model.hpp"
 #include "materials/linear_elastic.hpp"

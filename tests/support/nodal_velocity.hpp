@@ -16,12 +16,12 @@ class NodalVelocityField : public Fix<Dim> {
   using Field = std::function<Vec<Dim>(const Vec<Dim>&)>;
   explicit NodalVelocityField(Field f) : field(std::move(f)) {}
   std::string_view name() const override { return "nodal_velocity_field"; }
-  void nodal_velocities(Model<Dim>& m, VelocityStage stage) override {
+  void nodal_velocities(Model<Dim>& m, const StepContext& c, VelocityStage stage) override {
     auto& g = m.grid();
     for (int i = 0; i < g.node_count(); ++i) {
       if (!(g.mass[i] > m.mass_threshold())) continue;
       const Vec<Dim> v = field(g.node_position(i));
-      if (stage == VelocityStage::Updated) g.acceleration[i] = (v - g.momentum[i] / g.mass[i]) / m.dt();
+      if (stage == VelocityStage::Updated) g.acceleration[i] = (v - g.momentum[i] / g.mass[i]) / c.dt;
       g.velocity[i] = v;
     }
   }

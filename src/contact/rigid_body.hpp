@@ -6,9 +6,9 @@
 #include <memory>
 #include <string_view>
 
-#include "history.hpp"
-#include "material.hpp"
-#include "types.hpp"
+#include "core/history.hpp"
+#include "core/material.hpp"
+#include "core/types.hpp"
 
 namespace seismpm {
 

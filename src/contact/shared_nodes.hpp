@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "types.hpp"
+#include "core/types.hpp"
 
 namespace seismpm {
 

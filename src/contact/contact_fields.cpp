@@ -1,0 +1,425 @@
+#include "contact_fields.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/format.hpp"
+#include "node_contact.hpp"
+
+namespace seismpm {
+
+namespace {
+
+// Calls f(node, offset) for every node at offsets from..to (per axis) of `base` that lies in the grid.
+template <int Dim, class F>
+void for_each_node_around(const Grid<Dim>& grid, const std::array<int, Dim>& base, int from, int to, F&& f) {
+  std::array<int, Dim> o;
+  o.fill(from);
+  for (;;) {
+    int i = 0;
+    bool inside = true;
+    for (int d = 0; d < Dim; ++d) {
+      const int n = base[d] + o[d];
+      inside = inside && n >= 0 && n < grid.nodes(d);
+      i += n * grid.stride(d);
+    }
+    if (inside) f(i, o);
+    int d = 0;
+    while (d < Dim && ++o[d] > to) o[d] = from, ++d;
+    if (d == Dim) break;
+  }
+}
+
+// The nodes a deformable particle in a cell can reach: cell nodes -1 .. +2 for uGIMP, 0 .. +1 for
+// linear shapes.
+template <class Shape>
+constexpr int kReachLo = Shape::K == 2 ? 0 : -1;
+template <class Shape>
+constexpr int kReachHi = Shape::K == 2 ? 1 : 2;
+
+}  // namespace
+
+// ---------------------------------------------------------------- building
+
+template <int Dim>
+void ContactFields<Dim>::add_body() {
+  motion_.emplace_back();
+  numbered_ = false;
+}
+
+template <int Dim>
+ContactPair* ContactFields<Dim>::find_pair(int a, int b) {
+  for (auto& c : pairs_)
+    if ((c.a == a && c.b == b) || (c.a == b && c.b == a)) return &c;
+  return nullptr;
+}
+
+template <int Dim>
+void ContactFields<Dim>::add_pair(const std::vector<Body>& bodies, int a, int b, double friction) {
+  const int n = static_cast<int>(bodies.size());
+  if (a < 0 || a >= n || b < 0 || b >= n) throw InputError("contact: unknown body");
+  if (a == b) throw InputError("contact: body '" + bodies[a].name + "' cannot be in contact with itself");
+  if (!(friction >= 0.0 && std::isfinite(friction))) throw InputError("contact: friction must be a finite number >= 0");
+  if (bodies[a].rigid && bodies[b].rigid)
+    throw InputError("contact: '" + bodies[a].name + "' and '" + bodies[b].name +
+                     "' are both rigid; contact acts between a rigid and a deformable body or two deformable ones");
+  if (find_pair(a, b))
+    throw InputError("contact: the pair '" + bodies[a].name + "', '" + bodies[b].name + "' is declared already");
+  pairs_.push_back(ContactPair{a, b, friction});
+  numbered_ = false;
+}
+
+template <int Dim>
+void ContactFields<Dim>::set_friction(const std::vector<Body>& bodies, int a, int b, double friction) {
+  if (!(friction >= 0.0 && std::isfinite(friction))) throw InputError("contact: friction must be a finite number >= 0");
+  ContactPair* c = find_pair(a, b);
+  if (!c)
+    throw InputError("contact: no contact is declared between '" + bodies.at(a).name + "' and '" + bodies.at(b).name +
+                     "' (m:contact first)");
+  c->friction = friction;
+  numbered_ = false;
+}
+
+// Field 0 is shared by every deformable body named in no contact pair; every rigid body and every
+// body named in a pair gets its own.
+template <int Dim>
+bool ContactFields<Dim>::prepare(const std::vector<Body>& bodies) {
+  if (numbered_) return rules_.fields() > 1;
+  const int n = static_cast<int>(bodies.size());
+  field_of_body_.assign(n, 0);
+  body_rigid_.assign(n, 0);
+  int fields = 1;
+  for (int b = 0; b < n; ++b) {
+    body_rigid_[b] = bodies[b].rigid;
+    const bool paired = std::any_of(pairs_.begin(), pairs_.end(), [&](const ContactPair& c) { return c.a == b || c.b == b; });
+    if (bodies[b].rigid || paired) field_of_body_[b] = fields++;
+  }
+  if (fields > 32000) throw InputError("model: too many bodies in contact pairs");
+  any_rigid_ = std::any_of(body_rigid_.begin(), body_rigid_.end(), [](char r) { return r; });
+  rules_.reset(fields);
+  body_of_field_.assign(fields, -1);
+  for (int b = 0; b < n; ++b) {
+    rules_.set_rigid(field_of_body_[b], bodies[b].rigid);
+    if (field_of_body_[b] > 0) body_of_field_[field_of_body_[b]] = b;
+  }
+  for (const auto& c : pairs_) rules_.set_friction(field_of_body_[c.a], field_of_body_[c.b], c.friction);
+  numbered_ = true;
+  return fields > 1;
+}
+
+// ---------------------------------------------------------------- rigid bodies
+
+template <int Dim>
+int ContactFields<Dim>::prescribe_rigid_velocities(Particles<Dim>& particles, const Grid<Dim>& grid,
+                                                   const std::vector<Body>& bodies, const StepContext& c, bool move) {
+  const double t_mid = c.phase_time + 0.5 * c.dt;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (!bodies[b].rigid) continue;
+    auto& m = motion_[b];
+    for (int d = 0; d < Dim; ++d) m.current[d] = move ? m.velocity[d]->at(t_mid) : 0.0;
+    m.force.setZero();
+    if (!m.current.allFinite()) {
+      std::ostringstream os;
+      os << "step " << c.step << " (t = " << c.time << " s): the velocity history of rigid body '" << bodies[b].name
+         << "' gave " << format_point<Dim>(m.current) << " m/s at phase time " << t_mid << " s";
+      throw SimulationError(os.str());
+    }
+  }
+  const int n = static_cast<int>(particles.size());
+  auto& P = particles;
+  int leaving = n;
+#pragma omp parallel for schedule(static) reduction(min : leaving)
+  for (int p = 0; p < n; ++p) {
+    const int b = P.body[p];
+    if (!body_rigid_[b]) continue;
+    P.v[p] = motion_[b].current;
+    if (!inside_domain(grid, Vec<Dim>(P.x[p] + c.dt * P.v[p]))) leaving = std::min(leaving, p);
+  }
+  return leaving;
+}
+
+// ---------------------------------------------------------------- shared nodes
+
+// Which contact fields touch each node. Marked per cell rather than per particle (a cell's particles
+// mostly share a body): a deformable field marks every node its cell's particles can reach, a superset
+// whose extra slots stay massless; a rigid field marks the nodes of its cells only (the paper's
+// boundary nodes of the rigid body). Then every cell whose particles can reach a shared node is
+// flagged, so the transfers look up slots only there.
+template <int Dim>
+template <class Shape>
+void ContactFields<Dim>::mark_shared_nodes(const Particles<Dim>& particles, const Grid<Dim>& grid,
+                                           const ParticleSupport<Dim>& support, const StepContext& c) {
+  const int full_cell = mark_cell_fields(particles, grid, support);
+  shared_.clear(grid.node_count());
+  int overflow = mark_nodes<Shape>(grid, support.cells);
+  if (full_cell >= 0) {  // name the cell by its lower corner node
+    const auto x = support.cells.coords(full_cell);
+    int i = 0;
+    for (int d = 0; d < Dim; ++d) i += x[d] * grid.stride(d);
+    overflow = i;
+  }
+  if (overflow >= 0) {
+    std::ostringstream os;
+    os << "step " << c.step << " (t = " << c.time << " s): more than " << SharedNodes<Dim>::kSlots
+       << " contact fields (rigid bodies and bodies in contact pairs) meet near "
+       << format_point<Dim>(grid.node_position(overflow));
+    throw SimulationError(os.str());
+  }
+  shared_.build();
+  slot_reaction_.assign(shared_.mass.size(), Vec<Dim>::Zero());
+  flag_cells_near_shared<Shape>(grid, support.cells);
+}
+
+// The fields of each cell's particles; returns a cell that holds more than FieldSet can, or -1.
+template <int Dim>
+int ContactFields<Dim>::mark_cell_fields(const Particles<Dim>& particles, const Grid<Dim>& grid,
+                                         const ParticleSupport<Dim>& support) {
+  FieldSet empty;
+  empty.fill(-1);
+  cell_fields_.assign(grid.cell_count(), empty);
+  std::atomic<int> full_cell{-1};
+  const auto& cell_of = support.cell_of;
+  support.schedule.for_each_in_own_cell([&](int p) {  // slabs hold disjoint cells
+    if (!add_field(cell_fields_[cell_of[p]], field_of_body_[particles.body[p]]))
+      full_cell.store(cell_of[p], std::memory_order_relaxed);
+  });
+  return full_cell.load();
+}
+
+// Every node each cell's fields reach; returns a node that more than kSlots fields meet at, or -1.
+// Slabs of one colour are 4 cells apart: the nodes they mark never meet.
+template <int Dim>
+template <class Shape>
+int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
+  const int count = grid.cell_count();
+  const int layer = cells.per_layer();
+  const int slab_cells = ScatterSchedule::kSlabCells;
+  const int slabs = (grid.cells(cells.slab_axis()) + slab_cells - 1) / slab_cells;
+  std::atomic<int> overflow{-1};
+  for (int colour = 0; colour < 2; ++colour) {
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int sl = colour; sl < slabs; sl += 2) {
+      const int end = std::min(count, (sl + 1) * slab_cells * layer);
+      for (int c = sl * slab_cells * layer; c < end; ++c) {
+        const FieldSet& fs = cell_fields_[c];
+        if (fs[0] < 0) continue;
+        const auto coords = cells.coords(c);
+        for (const int f : fs) {
+          if (f < 0) break;
+          const bool rigid = rules_.rigid(f);
+          for_each_node_around<Dim>(grid, coords, rigid ? 0 : kReachLo<Shape>, rigid ? 1 : kReachHi<Shape>,
+                                    [&](int i, const std::array<int, Dim>&) {
+                                      if (!shared_.mark(i, f)) overflow.store(i, std::memory_order_relaxed);
+                                    });
+        }
+      }
+    }
+  }
+  return overflow.load();
+}
+
+// Cells whose deformable particles can reach a shared node: c - hi .. c - lo around it.
+template <int Dim>
+template <class Shape>
+void ContactFields<Dim>::flag_cells_near_shared(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
+  near_shared_.assign(grid.cell_count(), 0);
+  for (int k = 0; k < shared_.count(); ++k) {
+    const auto n = grid.node_coords(shared_.node(k));
+    for_each_node_around<Dim>(grid, n, -kReachHi<Shape>, -kReachLo<Shape>, [&](int, const std::array<int, Dim>& o) {
+      std::array<int, Dim> c;
+      for (int d = 0; d < Dim; ++d) {
+        c[d] = n[d] + o[d];
+        if (c[d] < 0 || c[d] >= grid.cells(d)) return;
+      }
+      near_shared_[cells.of_coords(c)] = 1;
+    });
+  }
+}
+
+template <int Dim>
+bool ContactFields<Dim>::held(int k) const {
+  bool rigid = false;
+  for (int j = 0; j < shared_.fields(k); ++j)
+    rigid = rigid || rules_.rigid(shared_.field_of_slot(k * SharedNodes<Dim>::kSlots + j));
+  return rigid;
+}
+
+// ---------------------------------------------------------------- transfers
+
+// The second, short pass of particles to grid, over the particles that can reach a shared node: it
+// keeps the common one as lean as with a single field.
+template <int Dim>
+template <class Shape>
+void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, const Grid<Dim>& grid,
+                                             const ParticleSupport<Dim>& support, const Vec<Dim>& gravity) {
+  const auto& st = support.template stencils<Shape>();
+  const auto& P = particles;
+  const auto& G = grid;
+  auto& S = shared_;
+  const Vec<Dim> g = gravity;
+  support.schedule.for_each([&](int p) {
+    const int b = P.body[p];
+    const int f = field_of_body_[b];
+    if (body_rigid_[b]) {
+      // Only the rigid body's own slots: weights N V for Eq. 9, and for contact normals either the
+      // weighted average of the particles' face normals or, without them, sum V grad N.
+      const double w = P.volume[p];
+      const Vec<Dim> wv = w * P.v[p];
+      const Vec<Dim>& face = P.normal[p];
+      const bool has_face = face.squaredNorm() > 0.0;
+      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+        const int k = S.index(i);
+        const int s = k >= 0 ? S.slot(k, f) : -1;
+        if (s < 0) return;
+        S.mass[s] += N * w;
+        S.momentum[s] += N * wv;
+        if (has_face)
+          S.gradient[s] += (N * w) * face;
+        else
+          S.gradient[s] += w * dN;
+      });
+      return;
+    }
+    if (!near_shared_[support.cell_of[p]]) return;
+    const double m = P.mass[p];
+    const Vec<Dim> mv = m * P.v[p];
+    const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
+    const Vec<Dim> mg = m * g;
+    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+      const int k = S.index(i);
+      if (k < 0) return;
+      const int s = S.slot(k, f);
+      S.mass[s] += N * m;
+      S.momentum[s] += N * mv;
+      S.force[s] += N * mg - vs * dN;
+      S.gradient[s] += m * dN;
+    });
+  });
+}
+
+template <int Dim>
+void ContactFields<Dim>::update_velocities(double dt, double min_mass) {
+  auto& S = shared_;
+  const int count = S.count();
+  const double eps = min_mass;
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < count; ++k)
+    for (int j = 0; j < S.fields(k); ++j) {
+      const int s = k * SharedNodes<Dim>::kSlots + j;
+      S.acceleration[s].setZero();
+      S.velocity[s].setZero();
+      if (rules_.rigid(S.field_of_slot(s))) {
+        if (S.mass[s] > 0.0) S.velocity[s] = S.momentum[s] / S.mass[s];
+      } else if (S.mass[s] > eps) {
+        S.acceleration[s] = S.force[s] / S.mass[s];
+        S.velocity[s] = S.momentum[s] / S.mass[s] + dt * S.acceleration[s];
+      }
+    }
+}
+
+template <int Dim>
+void ContactFields<Dim>::resolve(VelocityStage stage, const Grid<Dim>& grid, double dt, double min_mass) {
+  const int count = shared_.count();
+  const bool updated = stage == VelocityStage::Updated;
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < count; ++k) resolve_node(k, updated, grid, dt, min_mass);
+  if (updated) sum_reactions(dt);
+}
+
+template <int Dim>
+void ContactFields<Dim>::resolve_node(int k, bool updated, const Grid<Dim>& grid, double dt, double min_mass) {
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
+  auto& S = shared_;
+  NodeFields<Dim> nf;
+  nf.count = S.fields(k);
+  for (int j = 0; j < nf.count; ++j) {
+    const int s = k * kSlots + j;
+    nf.field[j] = S.field_of_slot(s);
+    nf.mass[j] = S.mass[s];
+    nf.gradient[j] = S.gradient[s];
+    nf.velocity[j] = S.velocity[s];
+  }
+  Vec<Dim> force_on[kSlots];
+  for (auto& f : force_on) f.setZero();
+  resolve_contact<Dim>(nf, rules_, min_mass, grid.cell(), updated ? dt : 0.0, force_on);
+  const unsigned mask = grid.fixity(S.node(k));
+  for (int j = 0; j < nf.count; ++j) {
+    const int s = k * kSlots + j;
+    if (rules_.rigid(nf.field[j])) {
+      if (updated) slot_reaction_[s] = force_on[j];
+      continue;
+    }
+    if (!(S.mass[s] > min_mass)) continue;
+    S.velocity[s] = nf.velocity[j];
+    for (int d = 0; d < Dim; ++d)
+      if (mask >> d & 1) S.velocity[s][d] = 0.0;
+    if (updated) S.acceleration[s] = (S.velocity[s] - S.momentum[s] / S.mass[s]) / dt;
+  }
+}
+
+// The force of each rigid body on the deformable ones, summed in a fixed order.
+template <int Dim>
+void ContactFields<Dim>::sum_reactions(double dt) {
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
+  const auto& S = shared_;
+  for (int s = 0, n = static_cast<int>(slot_reaction_.size()); s < n; ++s) {
+    if (s % kSlots >= S.fields(s / kSlots)) continue;
+    const int f = S.field_of_slot(s);
+    if (rules_.rigid(f)) motion_[body_of_field_[f]].force += slot_reaction_[s];
+  }
+  for (std::size_t b = 0; b < motion_.size(); ++b)
+    if (body_rigid_[b]) motion_[b].impulse += dt * motion_[b].force;
+}
+
+template <int Dim>
+template <class Shape>
+void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const Grid<Dim>& grid,
+                                        const ParticleSupport<Dim>& support, double min_mass) {
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
+  const auto& st = support.template stencils<Shape>();
+  const auto& P = particles;
+  auto& S = shared_;
+  for (std::size_t s = 0; s < S.momentum.size(); ++s)
+    if (s % kSlots < static_cast<std::size_t>(S.fields(static_cast<int>(s / kSlots))) &&
+        !rules_.rigid(S.field_of_slot(static_cast<int>(s))))
+      S.momentum[s].setZero();
+  support.schedule.for_each([&](int p) {
+    const int b = P.body[p];
+    if (body_rigid_[b] || !near_shared_[support.cell_of[p]]) return;
+    const int f = field_of_body_[b];
+    const Vec<Dim> mv = P.mass[p] * P.v[p];
+    for_each_node(st[p], grid, [&](int i, double N, const Vec<Dim>&) {
+      const int k = S.index(i);
+      if (k >= 0) S.momentum[S.slot(k, f)] += N * mv;
+    });
+  });
+  const int count = S.count();
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < count; ++k)
+    for (int j = 0; j < S.fields(k); ++j) {
+      const int s = k * kSlots + j;
+      if (rules_.rigid(S.field_of_slot(s))) continue;
+      S.velocity[s] = S.mass[s] > min_mass ? Vec<Dim>(S.momentum[s] / S.mass[s]) : Vec<Dim>::Zero();
+    }
+}
+
+#define SEISMPM_CONTACT_SHAPE(D, S)                                                                                 \
+  template void ContactFields<D>::mark_shared_nodes<S>(const Particles<D>&, const Grid<D>&,                       \
+                                                       const ParticleSupport<D>&, const StepContext&);            \
+  template void ContactFields<D>::particles_to_fields<S>(const Particles<D>&, const Grid<D>&,                     \
+                                                         const ParticleSupport<D>&, const Vec<D>&);               \
+  template void ContactFields<D>::remap_momentum<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, \
+                                                    double);
+SEISMPM_CONTACT_SHAPE(2, LinearShape)
+SEISMPM_CONTACT_SHAPE(2, GimpShape)
+SEISMPM_CONTACT_SHAPE(3, LinearShape)
+SEISMPM_CONTACT_SHAPE(3, GimpShape)
+#undef SEISMPM_CONTACT_SHAPE
+
+template class ContactFields<2>;
+template class ContactFields<3>;
+
+}  // namespace seismpm

@@ -1,0 +1,53 @@
+// The checks that end a step, and the message that names a failing particle, its body, position,
+// step and time.
+#include <sstream>
+
+#include "error.hpp"
+#include "format.hpp"
+#include "model.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+void Model<Dim>::fail(std::size_t p, const std::string& what) const {
+  std::ostringstream os;
+  os.precision(6);
+  os << "step " << steps_ << " (t = " << time_ << " s): particle " << particles_.id[p] << " of body '"
+     << bodies_[particles_.body[p]].name << "' at " << format_point<Dim>(particles_.x[p]) << " " << what;
+  if (what.find("grid") != std::string::npos)
+    os << " (the domain spans " << format_point<Dim>(grid_.domain_lower()) << " to "
+       << format_point<Dim>(grid_.domain_upper()) << ")";
+  throw SimulationError(os.str());
+}
+
+// Every particle finite with a positive volume, and its centre inside the domain (the next step
+// needs its whole support on the grid).
+template <int Dim>
+void Model<Dim>::check_particles() const {
+  const int n = static_cast<int>(particles_.size());
+  const auto& P = particles_;
+  int bad = n;
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (int p = 0; p < n; ++p) {
+    const bool finite = P.x[p].allFinite() && P.v[p].allFinite() && P.stress[p].allFinite() &&
+                        std::isfinite(P.volume[p]) && P.volume[p] > 0.0;
+    if (!finite) bad = std::min(bad, p);
+  }
+  if (bad < n) {
+    std::ostringstream os;
+    os << "has a non-finite or invalid state (velocity " << format_point<Dim>(P.v[bad]) << ", volume "
+       << P.volume[bad] << ")";
+    fail(bad, os.str());
+  }
+#pragma omp parallel for schedule(static) reduction(min : bad)
+  for (int p = 0; p < n; ++p)
+    if (!inside_domain(grid_, P.x[p])) bad = std::min(bad, p);
+  if (bad < n) fail(bad, "left the grid");
+}
+
+template void Model<2>::fail(std::size_t, const std::string&) const;
+template void Model<3>::fail(std::size_t, const std::string&) const;
+template void Model<2>::check_particles() const;
+template void Model<3>::check_particles() const;
+
+}  // namespace seismpm

@@ -1,0 +1,63 @@
+// Where each particle acts this step: its stencil (nodes and shape-function values at the
+// start-of-step position), its cell, and the coloured scatter schedule over cell slabs. Computed once
+// per step and read by every transfer of the step (and by contact).
+#pragma once
+
+#include <type_traits>
+#include <vector>
+
+#include "cell_index.hpp"
+#include "particles.hpp"
+#include "scatter_schedule.hpp"
+#include "shape_function.hpp"
+#include "stencil.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+class ParticleSupport {
+ public:
+  explicit ParticleSupport(const Grid<Dim>& grid) : cells(grid) {}
+
+  // Evaluates everything for the particles' current positions. Returns the index of the first
+  // particle outside the grid, or the particle count when all are inside.
+  template <class Shape>
+  int locate(const Grid<Dim>& grid, const Particles<Dim>& particles) {
+    auto& st = stencils<Shape>();
+    const int n = static_cast<int>(particles.size());
+    st.resize(n);
+    int outside = n;
+#pragma omp parallel for schedule(static) reduction(min : outside)
+    for (int p = 0; p < n; ++p)
+      if (!make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p])) outside = std::min(outside, p);
+    if (outside < n) return outside;
+    cell_of.resize(n);
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < n; ++p) cell_of[p] = cells.of(particles.x[p]);
+    const int per_layer = cells.per_layer();
+    schedule.build(n, grid.cells(cells.slab_axis()), [&](int p) { return cell_of[p] / per_layer; });
+    return n;
+  }
+
+  template <class Shape>
+  std::vector<Stencil<Dim, Shape::K>>& stencils() {
+    if constexpr (std::is_same_v<Shape, LinearShape>)
+      return linear_;
+    else
+      return gimp_;
+  }
+  template <class Shape>
+  const std::vector<Stencil<Dim, Shape::K>>& stencils() const {
+    return const_cast<ParticleSupport*>(this)->stencils<Shape>();
+  }
+
+  CellIndex<Dim> cells;
+  std::vector<int> cell_of;  // cell of each particle at the start of the step
+  ScatterSchedule schedule;
+
+ private:
+  std::vector<Stencil<Dim, LinearShape::K>> linear_;
+  std::vector<Stencil<Dim, GimpShape::K>> gimp_;
+};
+
+}  // namespace seismpm

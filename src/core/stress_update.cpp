@@ -1,0 +1,182 @@
+// The stress update of the step: velocity gradients from the (re-mapped) nodal velocities, the
+// cell-averaged volumetric strain, the objective rotation, crack closure and the volume, then the
+// constitutive models, one batch per material.
+#include "model.hpp"
+#include "objective_rate.hpp"
+
+namespace seismpm {
+
+template <int Dim>
+template <class Shape, bool Contact>
+void Model<Dim>::update_stress(const StepContext& c) {
+  velocity_gradients<Shape, Contact>(c);
+  if (settings_.cell_volumetric_strain) average_volumetric_strain<Contact>();
+  rotate_close_and_update_volume<Contact>();
+  integrate_materials();
+}
+
+// Strain increment dt sym(L) and spin dt skw(L), L_ab = dv_a / dx_b, per particle; none for rigid ones.
+template <int Dim>
+template <class Shape, bool Contact>
+void Model<Dim>::velocity_gradients(const StepContext& c) {
+  const auto& st = support_.template stencils<Shape>();
+  const int n = static_cast<int>(particles_.size());
+  const double dt = c.dt;
+  const auto& P = particles_;
+  const auto& G = grid_;
+  const auto& S = contact_.nodes();
+  strain_increment_.resize(n);
+  spin_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) {
+    [[maybe_unused]] int f = 0;
+    if constexpr (Contact) {
+      if (contact_.rigid(P.body[p])) {  // no strain, no stress
+        strain_increment_[p] = Sym::Zero();
+        spin_[p].setZero();
+        continue;
+      }
+      f = contact_.field_of(P.body[p]);
+    }
+    Mat<Dim> L = Mat<Dim>::Zero();
+    auto gather = [&](auto slotted) {
+      for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) {
+        if constexpr (decltype(slotted)::value) {
+          const int k = S.index(i);
+          if (k >= 0) {
+            L.noalias() += S.velocity[S.slot(k, f)] * dN.transpose();
+            return;
+          }
+        }
+        L.noalias() += G.velocity[i] * dN.transpose();
+      });
+    };
+    if (Contact && contact_.near_shared(support_.cell_of[p]))
+      gather(std::true_type{});
+    else
+      gather(std::false_type{});
+    const Mat<Dim> dL = dt * L;
+    strain_increment_[p] = to_voigt(embed<Dim>(Mat<Dim>(0.5 * (dL + dL.transpose()))));
+    const Mat3 w = embed<Dim>(Mat<Dim>(0.5 * (dL - dL.transpose())));
+    spin_[p] = Eigen::Vector3d(w(0, 1), w(1, 2), w(0, 2));
+  }
+}
+
+// B-bar: the cell's volume-weighted mean volumetric increment replaces each particle's; the
+// deviatoric part stays, and so does de_zz = 0 in plane strain. Removes the volumetric locking that
+// isochoric plastic flow and near-incompressibility cause in low-order cells.
+template <int Dim>
+template <bool Contact>
+void Model<Dim>::average_volumetric_strain() {
+  const int cells = grid_.cell_count();
+  cell_volume_.assign(cells, 0.0);
+  cell_dilation_.assign(cells, 0.0);
+  const auto& P = particles_;
+  const auto& cell_of = support_.cell_of;
+  support_.schedule.for_each_in_own_cell([&](int p) {
+    if constexpr (Contact)
+      if (contact_.any_rigid() && contact_.rigid(P.body[p])) return;  // no strain of their own
+    cell_volume_[cell_of[p]] += P.volume[p];
+    cell_dilation_[cell_of[p]] += P.volume[p] * trace(strain_increment_[p]);
+  });
+  const int n = static_cast<int>(particles_.size());
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) {
+    if constexpr (Contact)
+      if (contact_.rigid(P.body[p])) continue;
+    Sym& de = strain_increment_[p];
+    const int c = cell_of[p];
+    const double correction = (cell_dilation_[c] / cell_volume_[c] - trace(de)) / Dim;
+    for (int d = 0; d < Dim; ++d) de[d] += correction;
+  }
+}
+
+// Jaumann rotation of the old stress, total strain, crack closure and the new volume (capped at
+// max_dilation times the stress-free one).
+template <int Dim>
+template <bool Contact>
+void Model<Dim>::rotate_close_and_update_volume() {
+  const int n = static_cast<int>(particles_.size());
+  const double max_volume_ratio = settings_.max_dilation;
+  auto& P = particles_;
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) {
+    if constexpr (Contact)
+      if (contact_.rigid(P.body[p])) continue;
+    Sym& de = strain_increment_[p];
+    Mat3 w = Mat3::Zero();
+    w(0, 1) = spin_[p][0], w(1, 0) = -spin_[p][0];
+    w(1, 2) = spin_[p][1], w(2, 1) = -spin_[p][1];
+    w(0, 2) = spin_[p][2], w(2, 0) = -spin_[p][2];
+    P.stress[p] = rotate_objectively(P.stress[p], w);
+    P.strain[p] += de;
+    // Volume from the (averaged) strain increment: V <- V (1 + tr de) to first order, exactly as det(I + dt L)
+    // when nothing is averaged.
+    const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
+    if (opened(p)) {
+      // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
+      // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
+      const double opening = std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
+      const double closing = std::min(-trace(de), opening);
+      if (closing > 0.0)
+        for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
+    }
+    P.volume[p] *= F.template topLeftCorner<Dim, Dim>().determinant();
+    if (max_volume_ratio > 0.0)
+      P.volume[p] = std::min(P.volume[p], max_volume_ratio * P.mass[p] / constants_.initial_density[P.material[p]]);
+  }
+}
+
+// Each material updates its own particles' stresses in one call: no virtual call per particle.
+template <int Dim>
+void Model<Dim>::integrate_materials() {
+  if (!material_lists_valid_) rebuild_material_lists();
+  auto& P = particles_;
+  for (int m = 0; m < material_count(); ++m) {
+    const auto& list = material_particles_[m];
+    if (list.empty()) continue;
+    StressUpdate batch;
+    batch.index = list.data();
+    batch.count = static_cast<int>(list.size());
+    batch.stress = P.stress.data();
+    batch.strain_increment = strain_increment_.data();
+    batch.plastic_strain = P.plastic_strain.data();
+    batch.yield = P.yield.data();
+    materials_[m]->update_stress(batch);
+  }
+}
+
+template <int Dim>
+void Model<Dim>::rebuild_material_lists() {
+  material_particles_.assign(materials_.size(), {});
+  for (std::size_t p = 0; p < particles_.size(); ++p)
+    material_particles_[particles_.material[p]].push_back(static_cast<int>(p));
+  material_lists_valid_ = true;
+}
+
+#define SEISMPM_STRESS(D, S, C)                                                \
+  template void Model<D>::update_stress<S, C>(const StepContext&);             \
+  template void Model<D>::velocity_gradients<S, C>(const StepContext&);
+#define SEISMPM_STRESS_CELLS(D, C)                                             \
+  template void Model<D>::average_volumetric_strain<C>();                      \
+  template void Model<D>::rotate_close_and_update_volume<C>();
+SEISMPM_STRESS(2, LinearShape, false)
+SEISMPM_STRESS(2, LinearShape, true)
+SEISMPM_STRESS(2, GimpShape, false)
+SEISMPM_STRESS(2, GimpShape, true)
+SEISMPM_STRESS(3, LinearShape, false)
+SEISMPM_STRESS(3, LinearShape, true)
+SEISMPM_STRESS(3, GimpShape, false)
+SEISMPM_STRESS(3, GimpShape, true)
+SEISMPM_STRESS_CELLS(2, false)
+SEISMPM_STRESS_CELLS(2, true)
+SEISMPM_STRESS_CELLS(3, false)
+SEISMPM_STRESS_CELLS(3, true)
+template void Model<2>::integrate_materials();
+template void Model<3>::integrate_materials();
+template void Model<2>::rebuild_material_lists();
+template void Model<3>::rebuild_material_lists();
+#undef SEISMPM_STRESS
+#undef SEISMPM_STRESS_CELLS
+
+}  // namespace seismpm

@@ -1,0 +1,63 @@
+// The explicit time step: dt = cfl h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho_p), or a fixed
+// one; and the guard that stops a run whose time step collapses.
+#pragma once
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "material.hpp"
+#include "particles.hpp"
+
+namespace seismpm {
+
+// Per material, the constants the step reads without a virtual call.
+struct MaterialConstants {
+  std::vector<double> p_wave_modulus, initial_density, bulk_modulus, shear_modulus;
+  std::vector<char> tensionless;
+  void add(const Material& m) {
+    p_wave_modulus.push_back(m.p_wave_modulus());
+    initial_density.push_back(m.density());
+    bulk_modulus.push_back(m.bulk_modulus());
+    shear_modulus.push_back(m.shear_modulus());
+    tensionless.push_back(m.tensionless());
+  }
+};
+
+// Speed of the fastest signal a particle carries: its p-wave plus its own speed.
+template <int Dim>
+double signal_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p) {
+  return std::sqrt(c.p_wave_modulus[P.material[p]] / P.density(p)) + P.v[p].norm();
+}
+
+// The CFL time step of the particles' current state.
+template <int Dim>
+double stable_time_step(const Particles<Dim>& particles, const MaterialConstants& c, double cfl, double cell);
+
+// The particle with the fastest signal, and that speed (the one that sets the CFL time step).
+template <int Dim>
+std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c);
+
+class TimeStepControl {
+ public:
+  // The next step: `allowed` (CFL or fixed), no longer than `dt_max` (to land on an event).
+  double next(double allowed, double dt_max) {
+    const double dt = std::min(allowed, dt_max);
+    if (first_ == 0.0) first_ = dt;
+    return dt;
+  }
+  // A step that is not finite, or under 1e-6 of the first one without an event forcing it, means the
+  // run cannot go on (a particle compressed to nothing, a velocity blowing up).
+  bool collapsed(double dt, double dt_max) const { return !std::isfinite(dt) || (dt < 1e-6 * first_ && dt < dt_max); }
+  double first() const { return first_; }
+
+ private:
+  double first_ = 0.0;
+};
+
+extern template double stable_time_step<2>(const Particles<2>&, const MaterialConstants&, double, double);
+extern template double stable_time_step<3>(const Particles<3>&, const MaterialConstants&, double, double);
+extern template std::pair<std::size_t, double> fastest_signal<2>(const Particles<2>&, const MaterialConstants&);
+extern template std::pair<std::size_t, double> fastest_signal<3>(const Particles<3>&, const MaterialConstants&);
+
+}  // namespace seismpm

@@ -1,0 +1,156 @@
+// The transfers of the step: particles to grid, the nodal update and constraints, grid to particles
+// and the MUSL re-map. With Contact, the bodies' own fields at shared nodes are handled by
+// ContactFields, and the particles near them read their own field's slots.
+#include "model.hpp"
+
+namespace seismpm {
+
+// Nodal mass, momentum and force f = sum N m g - V sigma grad N from every deformable particle: the
+// common fields. Rigid particles map only to their own field's slots (ContactFields).
+template <int Dim>
+template <class Shape, bool Contact>
+void Model<Dim>::particles_to_grid() {
+  const auto& st = support_.template stencils<Shape>();
+  const Vec<Dim> g = settings_.gravity;
+  auto& P = particles_;
+  auto& G = grid_;
+  support_.schedule.for_each([&](int p) {
+    if constexpr (Contact)
+      if (contact_.rigid(P.body[p])) return;
+    const double m = P.mass[p];
+    const Vec<Dim> mv = m * P.v[p];
+    const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
+    const Vec<Dim> mg = m * g;
+    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+      G.mass[i] += N * m;
+      G.momentum[i] += N * mv;
+      G.force[i] += N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
+    });
+  });
+  if constexpr (Contact) contact_.template particles_to_fields<Shape>(P, G, support_, g);
+}
+
+template <int Dim>
+template <bool Contact>
+void Model<Dim>::update_nodal_velocities(const StepContext& c) {
+  const int n = grid_.node_count();
+  const double dt = c.dt, eps = mass_threshold_;
+  auto& G = grid_;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < n; ++i) {
+    if (G.mass[i] > eps) {
+      const double inv_m = 1.0 / G.mass[i];
+      G.acceleration[i] = G.force[i] * inv_m;
+      G.velocity[i] = G.momentum[i] * inv_m + dt * G.acceleration[i];
+    } else {
+      G.acceleration[i].setZero();
+      G.velocity[i].setZero();
+    }
+  }
+  if constexpr (Contact) contact_.update_velocities(dt, eps);
+}
+
+// Contact, then the grid fixities (on the acceleration too after the force update), then the fixes.
+template <int Dim>
+template <bool Contact>
+void Model<Dim>::constrain(VelocityStage stage, const StepContext& c) {
+  if constexpr (Contact) contact_.resolve(stage, grid_, c.dt, mass_threshold_);
+  grid_.apply_fixities(grid_.velocity);
+  if (stage == VelocityStage::Updated) grid_.apply_fixities(grid_.acceleration);
+  for (auto& f : fixes_) f->nodal_velocities(*this, c, stage);
+}
+
+// FLIP/PIC velocity, position and displacement of every particle; rigid particles move at v_R.
+template <int Dim>
+template <class Shape, bool Contact>
+void Model<Dim>::grid_to_particles(const StepContext& c) {
+  const auto& st = support_.template stencils<Shape>();
+  const int n = static_cast<int>(particles_.size());
+  const double dt = c.dt, alpha = settings_.flip;
+  auto& P = particles_;
+  const auto& G = grid_;
+  const auto& S = contact_.nodes();
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) {
+    [[maybe_unused]] int f = 0;
+    if constexpr (Contact) {
+      const int b = P.body[p];
+      if (contact_.rigid(b)) {  // prescribed: moves at v_R, whatever the grid says
+        P.x[p] += dt * P.v[p];
+        P.u[p] += dt * P.v[p];
+        continue;
+      }
+      f = contact_.field_of(b);
+    }
+    Vec<Dim> a = Vec<Dim>::Zero(), vl = Vec<Dim>::Zero();
+    auto gather = [&](auto slotted) {
+      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
+        if constexpr (decltype(slotted)::value) {
+          const int k = S.index(i);
+          if (k >= 0) {  // the particle's own field where fields meet
+            const int s = S.slot(k, f);
+            a += N * S.acceleration[s];
+            vl += N * S.velocity[s];
+            return;
+          }
+        }
+        a += N * G.acceleration[i];
+        vl += N * G.velocity[i];
+      });
+    };
+    if (Contact && contact_.near_shared(support_.cell_of[p]))
+      gather(std::true_type{});
+    else
+      gather(std::false_type{});
+    P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
+    P.x[p] += dt * vl;
+    P.u[p] += dt * vl;
+  }
+}
+
+// MUSL: the nodal velocity from the updated particle momentum, for the strain increment.
+template <int Dim>
+template <class Shape, bool Contact>
+void Model<Dim>::remap_momentum() {
+  const auto& st = support_.template stencils<Shape>();
+  auto& P = particles_;
+  auto& G = grid_;
+  const int nn = G.node_count();
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < nn; ++i) G.momentum[i].setZero();
+  support_.schedule.for_each([&](int p) {
+    if constexpr (Contact)
+      if (contact_.rigid(P.body[p])) return;
+    const Vec<Dim> mv = P.mass[p] * P.v[p];
+    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) { G.momentum[i] += N * mv; });
+  });
+  const double eps = mass_threshold_;
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < nn; ++i)
+    G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
+  if constexpr (Contact) contact_.template remap_momentum<Shape>(P, G, support_, eps);
+}
+
+#define SEISMPM_TRANSFERS(D, S, C)                                           \
+  template void Model<D>::particles_to_grid<S, C>();                         \
+  template void Model<D>::grid_to_particles<S, C>(const StepContext&);       \
+  template void Model<D>::remap_momentum<S, C>();
+#define SEISMPM_NODAL(D, C)                                                  \
+  template void Model<D>::update_nodal_velocities<C>(const StepContext&);    \
+  template void Model<D>::constrain<C>(VelocityStage, const StepContext&);
+SEISMPM_TRANSFERS(2, LinearShape, false)
+SEISMPM_TRANSFERS(2, LinearShape, true)
+SEISMPM_TRANSFERS(2, GimpShape, false)
+SEISMPM_TRANSFERS(2, GimpShape, true)
+SEISMPM_TRANSFERS(3, LinearShape, false)
+SEISMPM_TRANSFERS(3, LinearShape, true)
+SEISMPM_TRANSFERS(3, GimpShape, false)
+SEISMPM_TRANSFERS(3, GimpShape, true)
+SEISMPM_NODAL(2, false)
+SEISMPM_NODAL(2, true)
+SEISMPM_NODAL(3, false)
+SEISMPM_NODAL(3, true)
+#undef SEISMPM_TRANSFERS
+#undef SEISMPM_NODAL
+
+}  // namespace seismpm
