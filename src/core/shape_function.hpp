@@ -1,5 +1,6 @@
 // Shape functions on a uniform grid, per axis in cell units (h = 1), combined as tensor products.
-// Linear (tent) touches 2 nodes per axis, uGIMP 3 (PHYSICS.md, "Shape functions").
+// Linear (tent) touches 2 nodes per axis; uGIMP (a particle of fixed half-width l = 1 / (2 ppc) convolved
+// with the tent: continuous gradients, so particles crossing cell edges make no force noise) touches 3.
 // Each kind gives the first node of its stencil and the weights and derivatives at K consecutive
 // nodes from a given first node.
 #pragma once
