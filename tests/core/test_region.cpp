@@ -170,6 +170,7 @@ TEST_CASE("bad polylines are refused with the reason", "[core][region]") {
   using Side = PolylineRegion::Side;
   CHECK_THROWS_WITH(PolylineRegion({P(0, 0)}, 1.0, Side::Both), Catch::Contains("at least 2 points"));
   const double thickness = GENERATE(0.0, -1.0, std::numeric_limits<double>::infinity(), std::nan(""));
-  CHECK_THROWS_WITH(PolylineRegion({P(0, 0), P(1, 0)}, thickness, Side::Left), Catch::Contains("thickness must be > 0"));
+  CHECK_THROWS_WITH(PolylineRegion({P(0, 0), P(1, 0)}, thickness, Side::Left),
+                    Catch::Contains("thickness must be > 0"));
   CHECK_THROWS_WITH(PolylineRegion({P(0, 0), P(1, 0), P(1, 0)}, 1.0, Side::Both), Catch::Contains("repeats point 2"));
 }
