@@ -26,6 +26,13 @@ struct Particles {
   std::vector<std::uint16_t> body;
   std::vector<std::uint16_t> material;
 
+  // Calls f(member) for every per-particle vector above: the one list that add and permute
+  // go through, so a new member is its declaration plus its entry here.
+  template <class F>
+  void for_each_member(F&& f) { visit_members(*this, f); }
+  template <class F>
+  void for_each_member(F&& f) const { visit_members(*this, f); }
+
   std::size_t size() const { return x.size(); }
   double density(std::size_t p) const { return mass[p] / volume[p]; }
 
@@ -38,6 +45,13 @@ struct Particles {
 
   // Sets displacement and total strain to zero (end of a gravity phase).
   void reset_kinematics();
+
+ private:
+  template <class Self, class F>
+  static void visit_members(Self& s, F& f) {
+    f(s.x); f(s.u); f(s.v); f(s.mass); f(s.volume); f(s.half_width); f(s.stress); f(s.strain);
+    f(s.plastic_strain); f(s.yield); f(s.normal); f(s.id); f(s.body); f(s.material);
+  }
 };
 
 extern template struct Particles<2>;

@@ -15,36 +15,10 @@
 
 #include "atomic_file.hpp"
 #include "core/error.hpp"
-#include "core/particle_fields.hpp"
 
 namespace seismpm {
 
 namespace {
-
-struct ArrayName {
-  VtuArray array;
-  const char* name;
-  int components;
-};
-constexpr ArrayName kArrays[] = {
-    {VtuArray::Id, "id", 1},
-    {VtuArray::Body, "body", 1},
-    {VtuArray::Material, "material", 1},
-    {VtuArray::Mass, "mass", 1},
-    {VtuArray::Volume, "volume", 1},
-    {VtuArray::Density, "density", 1},
-    {VtuArray::Displacement, "displacement", 3},
-    {VtuArray::Velocity, "velocity", 3},
-    {VtuArray::Stress, "stress", 6},
-    {VtuArray::Strain, "strain", 6},
-    {VtuArray::Pressure, "pressure", 1},
-    {VtuArray::Q, "q", 1},
-    {VtuArray::ShearStrain, "shear_strain", 1},
-    {VtuArray::PlasticStrain, "plastic_strain", 1},
-    {VtuArray::Yield, "yield", 1},
-};
-
-const ArrayName& info(VtuArray a) { return kArrays[static_cast<int>(a)]; }
 
 // Time and phase as field data, which ParaView shows and reads.
 void add_meta(vtkUnstructuredGrid* grid, const VtuMeta& meta) {
@@ -79,19 +53,20 @@ void write(const std::string& path, vtkUnstructuredGrid* grid) {
 
 std::vector<VtuArray> all_vtu_arrays() {
   std::vector<VtuArray> out;
-  for (const auto& a : kArrays) out.push_back(a.array);
+  for (const QuantityInfo& q : kQuantities)
+    if (q.vtu_array) out.push_back(q.quantity);
   return out;
 }
 
 VtuArray parse_vtu_array(const std::string& name) {
-  for (const auto& a : kArrays)
-    if (name == a.name) return a.array;
-  if (name == "ux" || name == "uy" || name == "uz") return VtuArray::Displacement;
-  if (name == "vx" || name == "vy" || name == "vz") return VtuArray::Velocity;
-  if (name == "sxx" || name == "syy" || name == "szz" || name == "sxy" || name == "syz" || name == "sxz")
-    return VtuArray::Stress;
+  for (const QuantityInfo& q : kQuantities)
+    if (q.vtu_array && name == q.name) return q.quantity;
+  // A field name selects the array it is a component of (any dimension: "uz" is valid in 2D too).
+  for (const FieldInfo& f : kFields)
+    if (quantity_info(f.quantity).vtu_array && name == f.name) return f.quantity;
   std::string names;
-  for (const auto& a : kArrays) names += std::string(names.empty() ? "" : " ") + a.name;
+  for (const QuantityInfo& q : kQuantities)
+    if (q.vtu_array) names += (names.empty() ? "" : " ") + std::string(q.name);
   throw InputError("unknown output field '" + name + "' (fields: " + names +
                    ", or component names such as ux, vy, sxx)");
 }
@@ -113,38 +88,28 @@ void write_particles_vtu(const std::string& path, const Particles<Dim>& P, const
   for (vtkIdType k = 0; k < n; ++k) grid->InsertNextCell(VTK_VERTEX, 1, &k);
 
   for (VtuArray a : arrays) {
-    const ArrayName& ai = info(a);
-    if (a == VtuArray::Id || a == VtuArray::Body || a == VtuArray::Material || a == VtuArray::Yield) {
+    const QuantityInfo& q = quantity_info(a);
+    if (!q.vtu_array) continue;  // the position: the points themselves
+    const std::string name(q.name);
+    if (q.integer) {
       vtkNew<vtkIntArray> arr;
-      arr->SetName(ai.name);
+      arr->SetName(name.c_str());
       arr->SetNumberOfValues(n);
-      const Field f = a == VtuArray::Id ? Field::Id : a == VtuArray::Body ? Field::Body
-                                                   : a == VtuArray::Material ? Field::Material : Field::Yield;
-      for (vtkIdType k = 0; k < n; ++k) arr->SetValue(k, static_cast<int>(field_value(P, index[k], f)));
+      for (vtkIdType k = 0; k < n; ++k) {
+        double value;
+        quantity_value(P, index[k], a, &value);
+        arr->SetValue(k, static_cast<int>(value));
+      }
       grid->GetPointData()->AddArray(arr);
       continue;
     }
     vtkNew<vtkDoubleArray> arr;
-    arr->SetName(ai.name);
-    arr->SetNumberOfComponents(ai.components);
+    arr->SetName(name.c_str());
+    arr->SetNumberOfComponents(q.components);
     arr->SetNumberOfTuples(n);
     for (vtkIdType k = 0; k < n; ++k) {
-      const std::size_t p = index[k];
-      double t[6] = {0, 0, 0, 0, 0, 0};
-      switch (a) {
-        case VtuArray::Mass: t[0] = P.mass[p]; break;
-        case VtuArray::Volume: t[0] = P.volume[p]; break;
-        case VtuArray::Density: t[0] = P.density(p); break;
-        case VtuArray::Displacement: for (int d = 0; d < Dim; ++d) t[d] = P.u[p][d]; break;
-        case VtuArray::Velocity: for (int d = 0; d < Dim; ++d) t[d] = P.v[p][d]; break;
-        case VtuArray::Stress: for (int c = 0; c < 6; ++c) t[c] = P.stress[p][c]; break;
-        case VtuArray::Strain: for (int c = 0; c < 6; ++c) t[c] = P.strain[p][c]; break;
-        case VtuArray::Pressure: t[0] = pressure(P.stress[p]); break;
-        case VtuArray::Q: t[0] = von_mises(P.stress[p]); break;
-        case VtuArray::ShearStrain: t[0] = equivalent_shear_strain(P.strain[p]); break;
-        case VtuArray::PlasticStrain: t[0] = P.plastic_strain[p]; break;
-        default: break;
-      }
+      double t[6];
+      quantity_value(P, index[k], a, t);
       arr->SetTypedTuple(k, t);
     }
     grid->GetPointData()->AddArray(arr);

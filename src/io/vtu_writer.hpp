@@ -6,19 +6,18 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "core/particle_fields.hpp"
 #include "core/particles.hpp"
 
 namespace seismpm {
 
-// Groups of particle fields as VTK arrays: vectors with 3 components, tensors with 6 (xx, yy, zz,
-// xy, yz, xz), the scalars under their own names.
-enum class VtuArray {
-  Id, Body, Material, Mass, Volume, Density, Displacement, Velocity, Stress, Strain,
-  Pressure, Q, ShearStrain, PlasticStrain, Yield
-};
+// The particle point-data arrays: one per quantity of the field table (core/particle_fields.hpp),
+// vectors with 3 components, tensors with 6 (xx, yy, zz, xy, yz, xz), the scalars under their own names.
+using VtuArray = Quantity;
+// Every quantity written as an array, in the table's order.
 std::vector<VtuArray> all_vtu_arrays();
 // The array a field name belongs to: "ux" -> Displacement, "sxx" -> Stress, "pressure" -> Pressure;
-// group names ("displacement", "stress", ...) work too. Throws InputError listing the names.
+// array names ("displacement", "stress", ...) work too. Throws InputError listing the names.
 VtuArray parse_vtu_array(const std::string& name);
 
 struct VtuMeta {
