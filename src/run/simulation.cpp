@@ -12,27 +12,27 @@ namespace {
 
 // Sets a flag for as long as it lives: a run's `running` state, cleared however the run ends.
 struct FlagScope {
-  explicit FlagScope(bool& flag) : flag_(flag) { flag_ = true; }
-  ~FlagScope() { flag_ = false; }
+  explicit FlagScope(bool& f) : flag(f) { flag = true; }
+  ~FlagScope() { flag = false; }
   FlagScope(const FlagScope&) = delete;
   FlagScope& operator=(const FlagScope&) = delete;
-  bool& flag_;
+  bool& flag;
 };
 
 // A run's part of the schedule (its end, its call's times), removed however the run ends.
 struct RunScope {
-  RunScope(EventSchedule& schedule, double start, double duration, const RunCall* call) : schedule_(schedule) {
-    schedule_.begin_run(start, duration);
-    if (call && call->active()) call_ = schedule_.add(EventSchedule::Spacing::FromStart, call->every, start);
+  RunScope(EventSchedule& s, double start, double duration, const RunCall* run_call) : schedule(s) {
+    schedule.begin_run(start, duration);
+    if (run_call && run_call->active()) call = schedule.add(EventSchedule::Spacing::FromStart, run_call->every, start);
   }
   ~RunScope() {
-    if (call_ >= 0) schedule_.remove(call_);
-    schedule_.end_run();
+    if (call >= 0) schedule.remove(call);
+    schedule.end_run();
   }
   RunScope(const RunScope&) = delete;
   RunScope& operator=(const RunScope&) = delete;
-  EventSchedule& schedule_;
-  EventSchedule::Stream call_ = -1;
+  EventSchedule& schedule;
+  EventSchedule::Stream call = -1;
 };
 
 }  // namespace
@@ -200,7 +200,7 @@ RunEnd Simulation<Dim>::run_for(const RunSpec& spec) {
     for (long taken = 0; !schedule_.run_over(model_.time()) && taken < spec.max_steps; ++taken) {
       stop_if_interrupted(progress);
       model_.step(schedule_.next_time() - model_.time());
-      how = after_step(spec, scope.call_, progress);
+      how = after_step(spec, scope.call, progress);
       if (how != RunEnd::Completed) break;
     }
   } catch (const SimulationError&) {
