@@ -51,11 +51,11 @@ int version(lua_State* L) {
 }
 
 int out_dir(lua_State* L) {
-  const auto& dir = session(L).out_dir;
-  if (dir.empty())
-    lua_settop(L, 1);
+  const Session& s = session(L);
+  if (s.out_dir.empty())
+    lua_settop(L, 1);  // the default as given, whatever its type (nil when none)
   else
-    lua_pushstring(L, dir.c_str());
+    lua_pushstring(L, s.output_dir("").c_str());
   return 1;
 }
 
