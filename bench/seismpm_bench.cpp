@@ -70,124 +70,150 @@ std::unique_ptr<Model<2>> sand_column(bool profile) {
   return m;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   int steps = 100, repeat = 5;
   bool profile = false;
   std::vector<int> threads = {1, 2}, sizes = {25000, 50000, 100000};
-  for (int i = 1; i < argc; ++i) {
-    const bool has_value = i + 1 < argc;
-    if (!std::strcmp(argv[i], "--steps") && has_value) {
-      steps = std::max(1, std::atoi(argv[++i]));
-    } else if (!std::strcmp(argv[i], "--repeat") && has_value) {
-      repeat = std::max(1, std::atoi(argv[++i]));
-    } else if (!std::strcmp(argv[i], "--threads") && has_value) {
-      threads = parse_list(argv[++i]);
-    } else if (!std::strcmp(argv[i], "--profile")) {
-      profile = true;
-    } else if (!std::strcmp(argv[i], "--sizes") && has_value) {
-      sizes = parse_list(argv[++i]);
-    } else {
-      std::fprintf(stderr, "usage: %s [--steps N] [--repeat R] [--threads \"1 2\"] [--sizes \"25000 50000 100000\"] [--profile]\n",
-                   argv[0]);
-      return 2;
-    }
+};
+
+// Median particle-steps per second over `repeat` models from `make`, each timed over `steps` steps
+// after 5 warm-up steps (first touches, first sort); `after(model, r)` looks at each one.
+template <class Make, class After>
+double median_rate(const Options& o, Make&& make, After&& after) {
+  std::vector<double> rates;
+  for (int r = 0; r < o.repeat; ++r) {
+    auto holder = make();
+    Model<2>& m = holder.model();
+    const std::size_t particles = m.particles().size();
+    for (int k = 0; k < 5; ++k) m.step();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < o.steps; ++k) m.step();  // throws on a NaN
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    rates.push_back(particles * o.steps / wall);
+    after(m, r);
   }
-  std::printf("seismpm_bench: 2D elastic block under gravity, MUSL, FLIP; median of %d runs of %d steps\n", repeat,
-              steps);
+  std::sort(rates.begin(), rates.end());
+  return rates[rates.size() / 2];
+}
+
+// A model owned by a unique_ptr, or by a case's build, behind one accessor.
+struct OwnedModel {
+  std::unique_ptr<Model<2>> m;
+  Model<2>& model() { return *m; }
+};
+struct CaseModel {
+  cases::MovingBaseBlock::Built b;
+  Model<2>& model() { return *b.model; }
+};
+
+void print_stages(const Options& o, const Model<2>& m) {
+  for (const auto& [stage, seconds] : m.stage_times())
+    std::printf("    %-20s %8.3f ms/step\n", stage, 1e3 * seconds / (o.steps + 5));
+}
+
+void bench_blocks(const Options& o) {
+  std::printf("seismpm_bench: 2D elastic block under gravity, MUSL, FLIP; median of %d runs of %d steps\n", o.repeat,
+              o.steps);
   std::printf("%-8s %-10s %8s %10s %14s\n", "shape", "particles", "threads", "ms/step", "particle-steps/s");
-  for (ShapeKind shape : {ShapeKind::Linear, ShapeKind::Gimp}) {
-    for (int n : sizes) {
-      for (int t : threads) {
+  for (ShapeKind shape : {ShapeKind::Linear, ShapeKind::Gimp})
+    for (int n : o.sizes)
+      for (int t : o.threads) {
         omp_set_num_threads(t);
-        std::vector<double> rates;
         std::size_t particles = 0;
-        double ms = 0.0;
-        for (int r = 0; r < repeat; ++r) {
-          auto m = block(n, shape);
-          particles = m->particles().size();
-          for (int k = 0; k < 5; ++k) m->step();  // warm-up: first touches, first sort
-          const auto t0 = std::chrono::steady_clock::now();
-          for (int k = 0; k < steps; ++k) m->step();
-          const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          rates.push_back(particles * steps / wall);
-        }
-        std::sort(rates.begin(), rates.end());
-        const double median = rates[rates.size() / 2];
-        ms = 1e3 * particles / median;
-        std::printf("%-8s %-10zu %8d %10.3f %14.3fM\n", std::string(to_string(shape)).c_str(), particles, t, ms,
-                    median / 1e6);
+        const double rate = median_rate(o, [&] { return OwnedModel{block(n, shape)}; },
+                                        [&](const Model<2>& m, int) { particles = m.particles().size(); });
+        std::printf("%-8s %-10zu %8d %10.3f %14.3fM\n", std::string(to_string(shape)).c_str(), particles, t,
+                    1e3 * particles / rate, rate / 1e6);
         std::fflush(stdout);
       }
-    }
-  }
-  // Mohr-Coulomb column collapse: the first `steps` steps of the release, where most particles yield.
+}
+
+// Mohr-Coulomb column collapse: the first `steps` steps of the release, where most particles yield.
+void bench_sand_column(const Options& o) {
   std::printf("\nMohr-Coulomb sand column collapse (c = 0), uGIMP, MUSL\n");
-  for (int t : threads) {
+  for (int t : o.threads) {
     omp_set_num_threads(t);
-    std::vector<double> rates;
     std::size_t particles = 0, yielding = 0;
-    for (int r = 0; r < repeat; ++r) {
-      auto m = sand_column(profile);
-      particles = m->particles().size();
-      for (int k = 0; k < 5; ++k) m->step();
-      const auto t0 = std::chrono::steady_clock::now();
-      for (int k = 0; k < steps; ++k) m->step();  // throws on a NaN
-      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      rates.push_back(particles * steps / wall);
+    const double rate = median_rate(o, [&] { return OwnedModel{sand_column(o.profile)}; }, [&](const Model<2>& m, int r) {
+      particles = m.particles().size();
       yielding = 0;
-      for (auto y : m->particles().yield) yielding += y;
-      if (profile && r == 0)
-        for (const auto& [stage, seconds] : m->stage_times())
-          std::printf("    %-20s %8.3f ms/step\n", stage, 1e3 * seconds / (steps + 5));
-    }
-    std::sort(rates.begin(), rates.end());
-    const double median = rates[rates.size() / 2];
+      for (auto y : m.particles().yield) yielding += y;
+      if (o.profile && r == 0) print_stages(o, m);
+    });
     std::printf("%-8s %-10zu %8d %10.3f %14.3fM   (%zu particles yielding, no NaN)\n", "mc-sand", particles, t,
-                1e3 * particles / median, median / 1e6, yielding);
+                1e3 * particles / rate, rate / 1e6, yielding);
     std::fflush(stdout);
   }
-  // The moving-base block at a fine resolution: the cost of the contact fields.
+}
+
+// The moving-base block at a fine resolution: the cost of the contact fields.
+void bench_moving_base(const Options& o) {
   std::printf("\nMoving base under an elastic block (1 m x 1 m, 1 cm cells, uGIMP), base sliding at 2 m/s\n");
   struct Variant {
     const char* name;
     bool base;
     cases::BaseContact contact;
   };
-  for (const Variant& v : {Variant{"contact", true, cases::BaseContact::Friction}, Variant{"glued", true, cases::BaseContact::None},
+  for (const Variant& v : {Variant{"contact", true, cases::BaseContact::Friction},
+                           Variant{"glued", true, cases::BaseContact::None},
                            Variant{"no-base", false, cases::BaseContact::None}}) {
-    for (int t : threads) {
+    for (int t : o.threads) {
       omp_set_num_threads(t);
-      std::vector<double> rates;
       std::size_t particles = 0, shared = 0;
-      for (int r = 0; r < repeat; ++r) {
+      auto make = [&] {
         cases::MovingBaseBlock c;
         c.cell = 0.01;
         c.contact = v.contact;
         c.with_base = v.base;
-        c.profile = profile;
-        auto b = c.build();
-        auto& m = *b.model;
+        c.profile = o.profile;
+        CaseModel built{c.build()};
         if (v.base)
-          m.set_rigid_velocity(b.base, {std::make_shared<ConstantHistory>(2.0), std::make_shared<ConstantHistory>(0.0)});
+          built.model().set_rigid_velocity(
+              built.b.base, {std::make_shared<ConstantHistory>(2.0), std::make_shared<ConstantHistory>(0.0)});
+        return built;
+      };
+      const double rate = median_rate(o, make, [&](const Model<2>& m, int r) {
         particles = m.particles().size();
-        for (int k = 0; k < 5; ++k) m.step();
-        const auto t0 = std::chrono::steady_clock::now();
-        for (int k = 0; k < steps; ++k) m.step();
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        rates.push_back(particles * steps / wall);
         shared = m.contact().nodes().count();
-        if (profile && r == 0)
-          for (const auto& [stage, seconds] : m.stage_times())
-            std::printf("    %-20s %8.3f ms/step\n", stage, 1e3 * seconds / (steps + 5));
-      }
-      std::sort(rates.begin(), rates.end());
-      const double median = rates[rates.size() / 2];
-      std::printf("%-8s %-10zu %8d %10.3f %14.3fM   (%zu shared nodes)\n", v.name, particles, t, 1e3 * particles / median,
-                  median / 1e6, shared);
+        if (o.profile && r == 0) print_stages(o, m);
+      });
+      std::printf("%-8s %-10zu %8d %10.3f %14.3fM   (%zu shared nodes)\n", v.name, particles, t, 1e3 * particles / rate,
+                  rate / 1e6, shared);
       std::fflush(stdout);
     }
   }
+}
+
+bool parse_options(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const bool has_value = i + 1 < argc;
+    if (!std::strcmp(argv[i], "--steps") && has_value) {
+      o.steps = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--repeat") && has_value) {
+      o.repeat = std::max(1, std::atoi(argv[++i]));
+    } else if (!std::strcmp(argv[i], "--threads") && has_value) {
+      o.threads = parse_list(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--profile")) {
+      o.profile = true;
+    } else if (!std::strcmp(argv[i], "--sizes") && has_value) {
+      o.sizes = parse_list(argv[++i]);
+    } else {
+      std::fprintf(stderr,
+                   "usage: %s [--steps N] [--repeat R] [--threads \"1 2\"] [--sizes \"25000 50000 100000\"] [--profile]\n",
+                   argv[0]);
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  if (!parse_options(argc, argv, o)) return 2;
+  bench_blocks(o);
+  bench_sand_column(o);
+  bench_moving_base(o);
   return 0;
 }
