@@ -217,6 +217,13 @@ class Model {
   double mass_threshold_ = 0.0;
 };
 
+// Calls X(Dim, Shape, Contact) and Y(Dim, Contact) for every variant of the step, to instantiate the
+// stages that the step's files define.
+#define SEISMPM_FOR_EACH_STEP_VARIANT(X, Y)                                                      \
+  X(2, LinearShape, false) X(2, LinearShape, true) X(2, GimpShape, false) X(2, GimpShape, true) \
+  X(3, LinearShape, false) X(3, LinearShape, true) X(3, GimpShape, false) X(3, GimpShape, true) \
+  Y(2, false) Y(2, true) Y(3, false) Y(3, true)
+
 extern template class Model<2>;
 extern template class Model<3>;
 

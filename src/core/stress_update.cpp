@@ -154,29 +154,18 @@ void Model<Dim>::rebuild_material_lists() {
   material_lists_valid_ = true;
 }
 
-#define SEISMPM_STRESS(D, S, C)                                                \
-  template void Model<D>::update_stress<S, C>(const StepContext&);             \
+#define SEISMPM_STRESS(D, S, C)                                    \
+  template void Model<D>::update_stress<S, C>(const StepContext&); \
   template void Model<D>::velocity_gradients<S, C>(const StepContext&);
-#define SEISMPM_STRESS_CELLS(D, C)                                             \
-  template void Model<D>::average_volumetric_strain<C>();                      \
+#define SEISMPM_STRESS_CELLS(D, C)                            \
+  template void Model<D>::average_volumetric_strain<C>(); \
   template void Model<D>::rotate_close_and_update_volume<C>();
-SEISMPM_STRESS(2, LinearShape, false)
-SEISMPM_STRESS(2, LinearShape, true)
-SEISMPM_STRESS(2, GimpShape, false)
-SEISMPM_STRESS(2, GimpShape, true)
-SEISMPM_STRESS(3, LinearShape, false)
-SEISMPM_STRESS(3, LinearShape, true)
-SEISMPM_STRESS(3, GimpShape, false)
-SEISMPM_STRESS(3, GimpShape, true)
-SEISMPM_STRESS_CELLS(2, false)
-SEISMPM_STRESS_CELLS(2, true)
-SEISMPM_STRESS_CELLS(3, false)
-SEISMPM_STRESS_CELLS(3, true)
+SEISMPM_FOR_EACH_STEP_VARIANT(SEISMPM_STRESS, SEISMPM_STRESS_CELLS)
+#undef SEISMPM_STRESS
+#undef SEISMPM_STRESS_CELLS
 template void Model<2>::integrate_materials();
 template void Model<3>::integrate_materials();
 template void Model<2>::rebuild_material_lists();
 template void Model<3>::rebuild_material_lists();
-#undef SEISMPM_STRESS
-#undef SEISMPM_STRESS_CELLS
 
 }  // namespace seismpm

@@ -131,25 +131,14 @@ void Model<Dim>::remap_momentum() {
   if constexpr (Contact) contact_.template remap_momentum<Shape>(P, G, support_, eps);
 }
 
-#define SEISMPM_TRANSFERS(D, S, C)                                           \
-  template void Model<D>::particles_to_grid<S, C>();                         \
-  template void Model<D>::grid_to_particles<S, C>(const StepContext&);       \
+#define SEISMPM_TRANSFERS(D, S, C)                                   \
+  template void Model<D>::particles_to_grid<S, C>();                   \
+  template void Model<D>::grid_to_particles<S, C>(const StepContext&); \
   template void Model<D>::remap_momentum<S, C>();
-#define SEISMPM_NODAL(D, C)                                                  \
-  template void Model<D>::update_nodal_velocities<C>(const StepContext&);    \
+#define SEISMPM_NODAL(D, C)                                               \
+  template void Model<D>::update_nodal_velocities<C>(const StepContext&); \
   template void Model<D>::constrain<C>(VelocityStage, const StepContext&);
-SEISMPM_TRANSFERS(2, LinearShape, false)
-SEISMPM_TRANSFERS(2, LinearShape, true)
-SEISMPM_TRANSFERS(2, GimpShape, false)
-SEISMPM_TRANSFERS(2, GimpShape, true)
-SEISMPM_TRANSFERS(3, LinearShape, false)
-SEISMPM_TRANSFERS(3, LinearShape, true)
-SEISMPM_TRANSFERS(3, GimpShape, false)
-SEISMPM_TRANSFERS(3, GimpShape, true)
-SEISMPM_NODAL(2, false)
-SEISMPM_NODAL(2, true)
-SEISMPM_NODAL(3, false)
-SEISMPM_NODAL(3, true)
+SEISMPM_FOR_EACH_STEP_VARIANT(SEISMPM_TRANSFERS, SEISMPM_NODAL)
 #undef SEISMPM_TRANSFERS
 #undef SEISMPM_NODAL
 
