@@ -168,37 +168,4 @@ std::string api_markdown() {
   return os.str();
 }
 
-// The Lua library's functions (lua/seismpm.lua checks their arguments itself).
-namespace {
-const Key kSlopeKeys[] = {
-    arg::number("left", "m", "left end of the box").required(),
-    arg::number("right", "m", "right end of the box").required(),
-    arg::number("base", "m", "bottom of the box").def(0),
-    arg::point("crest", "m", "the crest's edge: the face starts there").required(),
-    arg::number("toe_level", "m", "height of the toe ground, between base and the crest").required(),
-    arg::number("angle", "degrees", "the face's inclination").in(Interval{0, 90, true, true}).required(),
-};
-const Key kLayersKeys[] = {
-    arg::positional("{top = y, name = ...}, ...", "the layers from the bottom up by their top elevation (m); "
-                                                   "name defaults to layerN"),
-    arg::number("left", "m", "left end").required(),
-    arg::number("right", "m", "right end").required(),
-    arg::number("base", "m", "bottom of the lowest layer").def(0),
-};
-const Function kLibrary[] = {
-    {"mpm.geometry.slope", nullptr, "mpm.geometry.slope", kSlopeKeys,
-     "The polygon of a slope in a box from x = left to right above `base`: level crest ground at height crest[2] "
-     "from `left` to crest[1], a face falling to the right at `angle` degrees down to toe_level, then level toe "
-     "ground to `right`. Returns an mpm.shape.polygon.",
-     "local s = mpm.geometry.slope{ left = 0, right = 0.9, crest = {0.35, 0.53}, toe_level = 0.2, angle = 45 }"},
-    {"mpm.geometry.layers", nullptr, "mpm.geometry.layers", kLayersKeys,
-     "Horizontal layers from `left` to `right`, listed from the bottom up by their top elevation: returns a list "
-     "of { name =, shape = rectangle }.",
-     "for _, l in ipairs(mpm.geometry.layers{ left = 0, right = 10, {top = 2, name = \"clay\"}, {top = 5, name = "
-     "\"sand\"} }) do print(l.name) end"},
-};
-}  // namespace
-
-std::span<const Function> library_functions() { return kLibrary; }
-
 }  // namespace seismpm::lua

@@ -225,13 +225,16 @@ std::string Args::string(const char* key) const {
 std::string Args::string(const char* key, const std::string& fallback) const { return has(key) ? string(key) : fallback; }
 
 std::string Args::choice(const char* key, const std::vector<std::string>& allowed, const std::string& fallback) const {
-  if (fallback.empty() && !has(key)) throw Error(context() + "missing " + quoted(key));
-  const std::string v = string(key, fallback);
   std::string list;
-  for (const auto& a : allowed) {
+  for (const auto& a : allowed) list += (list.empty() ? "" : "|") + a;
+  const int t = push(key);
+  const std::string got = t == LUA_TSTRING ? "'" + std::string(lua_tostring(L_, -1)) + "'" : type_name(L_, -1);
+  lua_pop(L_, 1);
+  if (t == LUA_TNIL && fallback.empty()) throw Error(context() + "missing " + quoted(key));
+  if (t != LUA_TNIL && t != LUA_TSTRING) throw Error(context() + quoted(key) + " must be one of " + list + ", got " + got);
+  const std::string v = t == LUA_TNIL ? fallback : got.substr(1, got.size() - 2);
+  for (const auto& a : allowed)
     if (a == v) return v;
-    list += (list.empty() ? "" : "|") + a;
-  }
   throw Error(context() + quoted(key) + " must be one of " + list + ", got '" + v + "'");
 }
 

@@ -95,6 +95,8 @@ std::string data_path(lua_State* L, const std::string& file) {
 
 std::span<const Function> session_functions() { return kSession; }
 
+void open_library_support(lua_State* L);  // library_binding.cpp
+
 Session& session(lua_State* L) {
   lua_pushstring(L, kSessionKey);
   lua_rawget(L, LUA_REGISTRYINDEX);
@@ -124,6 +126,7 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   open_phases(L_);
   open_plot(L_, mpm);
   open_help(L_, mpm);
+  open_library_support(L_);
   register_functions(L_, kSession);
   lua_pop(L_, 1);
 
