@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <map>
 #include <sstream>
 
 namespace seismpm::lua {
@@ -84,6 +85,18 @@ std::vector<std::array<std::string, 4>> rows_of(const Function& f) {
   return rows;
 }
 
+// How a script calls it: "mpm.model", or "m:run" for the method run of a model.
+std::string call_of(const Function& f) {
+  if (f.call) return f.call;
+  const std::string name = f.name;
+  const auto colon = name.find(':');
+  if (colon == std::string::npos) return name;
+  static const std::map<std::string, std::string> kReceivers = {
+      {"model", "m"}, {"body", "b"}, {"probe", "p"}, {"history", "h"}, {"shape", "s"}, {"material", "mat"}};
+  const auto it = kReceivers.find(name.substr(0, colon));
+  return (it == kReceivers.end() ? name.substr(0, colon) : it->second) + name.substr(colon);
+}
+
 }  // namespace
 
 const std::vector<ApiSection>& api_sections() {
@@ -120,8 +133,8 @@ const Function* find_function(const std::string& name) {
 }
 
 std::string signature(const Function& f) {
-  if (f.keys.empty()) return f.call;
-  std::string s = std::string(f.call) + "{";
+  if (f.keys.empty()) return call_of(f);
+  std::string s = call_of(f) + "{";
   for (std::size_t i = 0; i < f.keys.size(); ++i) {
     const Key& k = f.keys[i];
     const std::string v = default_value(k);

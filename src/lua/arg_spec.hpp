@@ -112,7 +112,8 @@ constexpr Key positional(const char* shown, const char* doc) { return key(shown,
 struct Function {
   const char* name;             // where it is registered and what help("...") takes: "mpm.model", "model:run"
   lua_CFunction fn;             // guarded<...>; nullptr for functions of the Lua library (lua/seismpm.lua)
-  const char* call;             // "m:run"; the whole signature ("m:step(n = 1)") when it takes no table
+  const char* call;             // the whole signature ("m:step(n = 1)") when it takes no table; nullptr:
+                                // the name, a method's object abbreviated ("m:run{ ... }")
   std::span<const Key> keys;    // its table of named arguments; empty when it takes none
   const char* summary;
   const char* example;          // a line of Lua

@@ -162,10 +162,10 @@ int history_fn(lua_State* L) {
 }
 
 const Function kHistory[] = {
-    {"mpm.history.table", &guarded<history_table>, "mpm.history.table", kTableKeys,
+    {"mpm.history.table", &guarded<history_table>, nullptr, kTableKeys,
      "A piecewise-linear history; zero before the first and after the last point.",
      "local vx = mpm.history.table{ {0, 0}, {0.1, 2}, {5, 2} }"},
-    {"mpm.history.csv", &guarded<history_csv>, "mpm.history.csv", kCsvKeys,
+    {"mpm.history.csv", &guarded<history_csv>, nullptr, kCsvKeys,
      "A history from two named columns of a CSV file with a header line; '#' lines are skipped. Errors name the "
      "file and line.",
      "local vx = mpm.history.csv{ file = \"data/table_velocity.csv\", time = \"t\", value = \"vx\" }"},
@@ -173,7 +173,7 @@ const Function kHistory[] = {
      "A history computed by a Lua function of time (s), called when the history is read (protected: an error, a "
      "yield or a value that is not a number stops the call with an error naming t).",
      "local vx = mpm.history.fn(function(t) return 0.1 * math.sin(2 * math.pi * 3 * t) end)"},
-    {"mpm.history.at2", &guarded<history_at2>, "mpm.history.at2", kAt2Keys,
+    {"mpm.history.at2", &guarded<history_at2>, nullptr, kAt2Keys,
      "A ground-motion record: PEER NGA .AT2 (acceleration in g) or a two-column time, acceleration file (comma or "
      "white space, '#' comments). tostring(h) reports the peak and end values before and after the baseline "
      "correction. Errors name the file and line.",

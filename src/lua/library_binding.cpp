@@ -24,12 +24,12 @@ const Key kLayersKeys[] = {
 };
 
 const Function kLibrary[] = {
-    {"mpm.geometry.slope", nullptr, "mpm.geometry.slope", kSlopeKeys,
+    {"mpm.geometry.slope", nullptr, nullptr, kSlopeKeys,
      "The polygon of a slope in a box from x = left to right above `base`: level crest ground at height crest[2] "
      "from `left` to crest[1], a face falling to the right at `angle` degrees down to toe_level, then level toe "
      "ground to `right`. Returns an mpm.shape.polygon.",
      "local s = mpm.geometry.slope{ left = 0, right = 0.9, crest = {0.35, 0.53}, toe_level = 0.2, angle = 45 }"},
-    {"mpm.geometry.layers", nullptr, "mpm.geometry.layers", kLayersKeys,
+    {"mpm.geometry.layers", nullptr, nullptr, kLayersKeys,
      "Horizontal layers from `left` to `right`, listed from the bottom up by their top elevation: returns a list "
      "of { name =, shape = rectangle }.",
      "for _, l in ipairs(mpm.geometry.layers{ left = 0, right = 10, {top = 2, name = \"clay\"}, {top = 5, name = "

@@ -114,16 +114,16 @@ int drucker_prager(lua_State* L) {
 }
 
 const Function kMaterial[] = {
-    {"mpm.material.linear_elastic", &guarded<linear_elastic>, "mpm.material.linear_elastic", kLinearElasticKeys,
+    {"mpm.material.linear_elastic", &guarded<linear_elastic>, nullptr, kLinearElasticKeys,
      "Isotropic linear elasticity (plane strain keeps sigma_zz).",
      "local rock = mpm.material.linear_elastic{ density = 2550, young = 5e8, poisson = 0.19 }"},
-    {"mpm.material.mohr_coulomb", &guarded<mohr_coulomb>, "mpm.material.mohr_coulomb", kMohrCoulombKeys,
+    {"mpm.material.mohr_coulomb", &guarded<mohr_coulomb>, nullptr, kMohrCoulombKeys,
      "Elastic-perfectly plastic Mohr-Coulomb, non-associated, with a tension cut-off. softening = { cohesion =, "
      "friction =, strain = } softens c and phi linearly to these residual values at that accumulated plastic shear "
      "strain. Particle fields plastic_strain and yield show the state.",
      "local soil = mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, cohesion = 780, "
      "friction = 23, dilation = 0, tension = 0 }"},
-    {"mpm.material.drucker_prager", &guarded<drucker_prager>, "mpm.material.drucker_prager", kDruckerPragerKeys,
+    {"mpm.material.drucker_prager", &guarded<drucker_prager>, nullptr, kDruckerPragerKeys,
      "Drucker-Prager fitted to Mohr-Coulomb's c, phi, psi, with a tension cut-off on the mean stress.",
      "local sand = mpm.material.drucker_prager{ density = 2650, young = 8.4e5, poisson = 0.3, friction = 19.8, "
      "fit = \"plane_strain\" }"},

@@ -38,7 +38,7 @@ int plot(lua_State* L) {
 }
 
 const Function kPlot[] = {
-    {"mpm.plot", &guarded<plot>, "mpm.plot", kPlotKeys,
+    {"mpm.plot", &guarded<plot>, nullptr, kPlotKeys,
      "A PNG line plot (gnuplot) of columns of a CSV file; returns the picture's path.",
      "mpm.plot{ file = \"out/slide/front.csv\", x = \"time (s)\", y = {\"front x (m)\"}, title = \"Front\" }"},
 };

@@ -78,12 +78,12 @@ int polyline(lua_State* L) {
 }
 
 const Function kShape[] = {
-    {"mpm.shape.rectangle", &guarded<rectangle>, "mpm.shape.rectangle", kRectangleKeys, "An axis-aligned rectangle.",
+    {"mpm.shape.rectangle", &guarded<rectangle>, nullptr, kRectangleKeys, "An axis-aligned rectangle.",
      "local s = mpm.shape.rectangle{ 0, 0, 0.9, 0.2 }"},
-    {"mpm.shape.polygon", &guarded<polygon>, "mpm.shape.polygon", kPolygonKeys,
+    {"mpm.shape.polygon", &guarded<polygon>, nullptr, kPolygonKeys,
      "A simple polygon, convex or concave, in either orientation.",
      "local s = mpm.shape.polygon{ {0, 0}, {0.9, 0}, {0.9, 0.2}, {0.3, 0.5}, {0, 0.5} }"},
-    {"mpm.shape.polyline", &guarded<polyline>, "mpm.shape.polyline", kPolylineKeys,
+    {"mpm.shape.polyline", &guarded<polyline>, nullptr, kPolylineKeys,
      "A band along a polyline. A one-sided band under a slope gives its particles the line's normal, so contact "
      "follows the true surface.",
      "local base = mpm.shape.polyline{ {0, 0.1}, {1, 0.1}, thickness = 0.02, side = \"right\" }"},
