@@ -6,12 +6,11 @@
 -- The fine runs are long on 2 cores (measured: 0.75 cm 12-35 min, 0.536 cm 91 min, 0.375 cm 1.9 hours,
 -- depending on the machine; docs/validation.md has the study's results): pick fewer with
 -- --set cells=0.0075,0.0055 or shorten them with --set duration=4. Each run writes into
--- out/mesh_sensitivity/cell_<size>/ (do not pass --out: it would send all runs to one directory);
--- the table goes to out/mesh_sensitivity/mesh_sensitivity.csv.
+-- <out>/cell_<size>/, and the table goes to <out>/mesh_sensitivity.csv, where <out> is --out DIR or
+-- out/mesh_sensitivity.
 --
 -- --set reuse=true takes the summary of a run already made at the same duration (an interrupted study
--- goes on where it stopped; runs made by hand with shaking_table.lua --out out/mesh_sensitivity/cell_<size>
--- count too).
+-- goes on where it stopped; runs made by hand with shaking_table.lua --out <out>/cell_<size> count too).
 --
 --   seismpm scenarios/mesh_sensitivity.lua [--set cells=0.0075,0.00535714,0.00375] [--set duration=14]
 --                                          [--set reuse=true]
@@ -59,6 +58,7 @@ local function run(cell)
     if overrides[name] ~= nil then return overrides[name] end
     return saved(name, default)
   end
+  -- The scenario writes into mpm.out_dir(its default): here, this run's folder.
   local saved_out = mpm.out_dir
   mpm.out_dir = function() return string.format("%s/cell_%g", base_out, cell) end
   local start = os.time()

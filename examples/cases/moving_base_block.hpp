@@ -9,9 +9,8 @@
 #include <cmath>
 #include <memory>
 
-#include "core/local_damping.hpp"
-#include "core/model.hpp"
 #include "materials/linear_elastic.hpp"
+#include "run/simulation.hpp"
 
 namespace seismpm::cases {
 
@@ -27,7 +26,8 @@ struct MovingBaseBlock {
   double base_speed = 2.0;               // m/s
   BaseContact contact = BaseContact::Friction;
   double friction = 0.3;                 // mu (0: smooth)
-  double settle_time = 0.5;              // s of damped settling under gravity
+  // The block settles under gravity as in the scenario: local damping 0.7 to equilibrium.
+  GravityPhaseSettings settle{0.7, 0.005, 2.0};
   ShapeKind shape = ShapeKind::Gimp;
   bool with_base = true;                 // false: the block alone (falls freely), for timing comparisons
   bool profile = false;
@@ -43,9 +43,9 @@ struct MovingBaseBlock {
   }
 
   struct Built {
-    std::unique_ptr<Model<2>> model;
+    std::unique_ptr<Simulation<2>> simulation;
+    Model<2>* model = nullptr;  // the simulation's
     int block = -1, base = -1;
-    std::shared_ptr<LocalDamping<2>> damping;
   };
 
   // Block on [0, 1] x [0, 1]; the base, one row of particles per cell, spans 2.5 m to the left of
@@ -59,7 +59,8 @@ struct MovingBaseBlock {
     s.gravity = Vec<2>(0.0, -gravity);
     s.profile = profile;
     Built b;
-    b.model = std::make_unique<Model<2>>(s);
+    b.simulation = std::make_unique<Simulation<2>>(s);
+    b.model = &b.simulation->model();
     auto& m = *b.model;
     const int mat = m.add_material(std::make_shared<LinearElastic>(density(), young, poisson));
     b.block = m.add_body("block", ppc);
@@ -71,21 +72,17 @@ struct MovingBaseBlock {
       m.fill_box(b.base, -1, Vec<2>(-2.5, -cell), Vec<2>(2.0, 0.0));
       if (contact == BaseContact::Friction) m.add_contact(b.block, b.base, friction);
     }
-    b.damping = std::make_shared<LocalDamping<2>>(0.0);
-    m.add_fix(b.damping);
     return b;
   }
 
-  // Settles the block under gravity with local damping 0.7, resets displacements and starts the base.
+  // The gravity phase (the block at rest on the base held still; displacements reset at its end),
+  // then the base set moving at base_speed: a dynamic phase (no damping) starts, of no length yet, so
+  // that the caller runs it on in the stretches it wants to look at.
   void settle_and_start(Built& b) const {
-    b.damping->set_alpha(0.7);
-    b.model->begin_phase(false);
-    b.model->run(settle_time);
-    b.damping->set_alpha(0.0);
-    b.model->particles().reset_kinematics();
+    b.simulation->gravity_phase(settle);
     b.model->set_rigid_velocity(b.base, {std::make_shared<ConstantHistory>(base_speed),
                                          std::make_shared<ConstantHistory>(0.0)});
-    b.model->begin_phase(true);
+    b.simulation->dynamic_phase(0.0, 0.0);
   }
 };
 

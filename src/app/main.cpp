@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
   app.add_flag("-i,--interactive", interactive, "Enter the console after running FILE and chunks");
   app.add_option("-e,--execute", chunks, "Run a Lua chunk (may repeat)")->allow_extra_args(false);
   app.add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
-  app.add_option("--out", out, "Write every output into this directory");
+  app.add_option("--out", out, "Output directory in place of the script's default (mpm.out_dir)");
   app.add_flag("--quiet", quiet, "No progress display");
   app.add_option("--set", sets, "Scenario parameter name=value, read with mpm.param(name, default) (may repeat)")
       ->allow_extra_args(false);

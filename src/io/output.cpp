@@ -95,8 +95,6 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
     write_file_atomically(settings_.dir + "/grid.pvd", pvd_text(grid_files_));
   }
   if (!probes.empty()) write_file_atomically(settings_.dir + "/probes.csv", probes_csv_text(probes));
-  // The next time on the regular grid of output times after t.
-  while (next_ <= t + 1e-9 * settings_.every) next_ += settings_.every;
 }
 
 template <int Dim>

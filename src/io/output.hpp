@@ -1,8 +1,9 @@
-// A model's output directory: particles_NNNNNN.vtu every `every` seconds with particles.pvd listing
-// them by simulated time (rewritten whole after every file, so it is always valid); rigid bodies in
+// A model's output directory: particles_NNNNNN.vtu at each write, with particles.pvd listing them by
+// simulated time (rewritten whole after every file, so it is always valid); rigid bodies in
 // rigid_NNNNNN.vtu + rigid.pvd, so they can be hidden; optional grid_NNNNNN.vtu + grid.pvd; and
 // probes.csv with every field of every probe; reactions.csv with the mean force of each rigid body on
-// the deformable bodies over each output interval.
+// the deformable bodies over each output interval. When to write (every `every` seconds, at the end of
+// runs) is the simulation's event schedule (src/run).
 #pragma once
 
 #include <memory>
@@ -11,14 +12,14 @@
 #include <vector>
 
 #include "core/model.hpp"
-#include "core/probe.hpp"
+#include "probe.hpp"
 #include "vtu_writer.hpp"
 
 namespace seismpm {
 
 struct OutputSettings {
   std::string dir;
-  double every = 0.1;                          // s of simulated time between files (> 0)
+  double every = 0.1;                          // s of simulated time between writes (> 0)
   std::vector<VtuArray> arrays = all_vtu_arrays();
   bool grid = false;                           // also write the active grid nodes
 };
@@ -29,9 +30,6 @@ class Output {
   // Creates the directory; throws OutputError naming it when that fails.
   explicit Output(OutputSettings settings);
   const OutputSettings& settings() const { return settings_; }
-  // True when the model's time has reached the next output time.
-  bool due(double time) const { return time >= next_ - 1e-9 * settings_.every; }
-  double next_time() const { return next_; }
   // True when nothing was written at this time yet.
   bool behind(double time) const { return files_.empty() || files_.back().first < time; }
   // Writes the files for the model's current state. Throws OutputError; files written before stay valid.
@@ -40,7 +38,6 @@ class Output {
 
  private:
   OutputSettings settings_;
-  double next_ = 0.0;
   std::vector<std::pair<double, std::string>> files_;  // time, particle file name
   std::vector<std::pair<double, std::string>> grid_files_;
   std::vector<std::pair<double, std::string>> rigid_files_;

@@ -205,8 +205,9 @@ int model_fix(lua_State* L) {
 int model_probe(lua_State* L) {
   auto handle = check_object<ModelObject>(L, 1, kModelType, "self").handle;
   Args a(L, 2, {"name", "body", "at", "every"});
-  const std::string name = a.string("name", "probe" + std::to_string(handle->probes.size() + 1));
-  for (const auto& p : handle->probes)
+  Simulation<2>& sim = handle->simulation;
+  const std::string name = a.string("name", "probe" + std::to_string(sim.probes().size() + 1));
+  for (const auto& p : sim.probes())
     if (std::string(p->name()) == name) throw Error("key 'name': a probe called '" + name + "' exists already");
   a.push("body");
   const int body = check_object<BodyObject>(L, -1, kBodyType, "key 'body'").body;
@@ -220,22 +221,11 @@ int model_probe(lua_State* L) {
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.body[i] == body && (p.x[i] - at).norm() < best) best = (p.x[i] - at).norm(), id = p.id[i];
   if (id < 0) throw Error("key 'body' has no particles");
-  auto probe = std::make_shared<Probe<2>>(handle->model, name, id, every);
-  handle->model.add_fix(probe);
-  handle->probes.push_back(probe);
-  push_object(L, kProbeType, ProbeObject{handle, probe});
+  push_object(L, kProbeType, ProbeObject{handle, sim.add_probe(name, id, every)});
   return 1;
 }
 
 }  // namespace
-
-LocalDamping<2>& damping_of(ModelHandle& h) {
-  if (!h.damping) {
-    h.damping = std::make_shared<LocalDamping<2>>(0.0);
-    h.model.add_fix(h.damping);
-  }
-  return *h.damping;
-}
 
 PeriodicCall::PeriodicCall(Args& a) {
   const bool has_every = a.has("every"), has_call = a.has("call");
@@ -257,17 +247,11 @@ PeriodicCall::~PeriodicCall() {
   if (state) luaL_unref(state, LUA_REGISTRYINDEX, function);
 }
 
-void refuse_inside_a_run(const ModelHandle& h, const char* what) {
-  if (h.running)
-    throw Error(std::string("a run's call may not ") + what +
-                " (m:run, m:step or a phase): return true from it to end the run");
-}
-
 namespace {
 
 // Calls the run's function with the model (stack index 1); true when it asks the run to stop.
-bool invoke(lua_State* L, const PeriodicCall& call, double t) {
-  lua_rawgeti(L, LUA_REGISTRYINDEX, call.function);
+bool invoke(lua_State* L, int function, double t) {
+  lua_rawgeti(L, LUA_REGISTRYINDEX, function);
   lua_pushvalue(L, 1);
   if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
     std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error";
@@ -283,71 +267,22 @@ bool invoke(lua_State* L, const PeriodicCall& call, double t) {
 
 }  // namespace
 
-// Steps until `duration` more seconds have passed (or max_steps, or `done()` says so after a step),
-// with progress (plus `extra()`), Ctrl-C, outputs at their times, `call` every call.every seconds
-// and at the end, and, for runs, the final state on file. Returns whether `done` or the call ended it.
-bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,
-             const std::function<bool()>& done, const std::function<std::string()>& extra,
-             const PeriodicCall& call) {
+RunCall PeriodicCall::run_call(lua_State* L, const Model<2>& model) const {
+  if (every <= 0) return {};
+  return {every, [L, f = function, &model] { return invoke(L, f, model.time()); }};
+}
+
+void refuse_inside_a_run(const ModelHandle& h, const char* what) {
+  if (h.simulation.running())
+    throw Error(std::string("a run's call may not ") + what +
+                " (m:run, m:step or a phase): return true from it to end the run");
+}
+
+void prepare_run(lua_State* L, ModelHandle& h) {
   Session& s = session(L);
-  Model<2>& m = h.model;
-  refuse_inside_a_run(h, "step the model");
-  h.running = true;
-  struct Running {
-    bool& flag;
-    ~Running() { flag = false; }
-  } running{h.running};
-  Progress progress(stderr, s.progress);
-  const double start = m.time();
-  const double end = start + duration;
-  progress.start(h.phase, m.time(), end, m.particles().size(), m.steps(), static_cast<bool>(done));
   s.interrupted = false;
-  long taken = 0;
-  bool stopped = false, stopped_by_call = false;
-  long calls = 0;  // the calls made; the next is due at start + (calls + 1) every
-  const auto next_call = [&] { return call.active() ? start + double(calls + 1) * call.every : INFINITY; };
-  try {
-    // Steps shorter than 1e-9 of the duration are round-off, not time.
-    const double slack = std::isfinite(duration) ? 1e-9 * duration : 0.0;
-    const double call_slack = 1e-9 * call.every;
-    while (end - m.time() > slack && taken < max_steps) {
-      if (s.interrupted) {
-        lua_sethook(L, nullptr, 0, 0);  // the Ctrl-C hook would replace this message in the error handler
-        progress.finish(m.time(), m.steps(), "interrupted");
-        std::ostringstream os;
-        os << "interrupted (Ctrl-C) at t = " << m.time() << " s, step " << m.steps() << "; the model is intact";
-        throw Error(os.str());
-      }
-      // Land exactly on the next output, probe and call times.
-      double until = std::min(end, next_call());
-      if (h.output) until = std::min(until, h.output->next_time());
-      for (const auto& p : h.probes) until = std::min(until, p->next_sample_time());
-      m.step(until - m.time());
-      ++taken;
-      if (h.output && h.output->due(m.time())) h.output->write(m, h.probes, h.phase);
-      bool finished = done && done();
-      if (call.active() && (next_call() - m.time() <= call_slack || end - m.time() <= slack)) {
-        while (next_call() - m.time() <= call_slack) ++calls;
-        stopped_by_call = invoke(L, call, m.time());
-        finished = finished || stopped_by_call;
-      }
-      progress.update(m.time(), m.steps(), m.dt(), extra ? extra() : std::string());
-      if (finished) {
-        stopped = true;
-        break;
-      }
-    }
-  } catch (const SimulationError&) {
-    // The files written so far stay as they are: valid, up to the last output time.
-    progress.finish(m.time(), m.steps(), "failed");
-    throw;
-  }
-  for (auto& p : h.probes) p->sample(m);
-  // The end of a run is always on file, so ParaView and probes.csv show the final state.
-  if (final_output && h.write_at_run_end && h.output && h.output->behind(m.time())) h.output->write(m, h.probes, h.phase);
-  progress.finish(m.time(), m.steps(),
-                  stopped_by_call ? "stopped by its call" : stopped || !done ? "done" : "stopped at its time limit");
-  return stopped;
+  h.simulation.set_progress(s.progress);
+  h.simulation.set_interrupt(&s.interrupted);
 }
 
 namespace {
@@ -359,7 +294,8 @@ int model_step(lua_State* L) {
     if (!lua_isinteger(L, 2) || lua_tointeger(L, 2) < 1) throw Error("the number of steps must be a whole number >= 1");
     n = lua_tointeger(L, 2);
   }
-  run_for(L, h, INFINITY, n, false, {}, {});
+  refuse_inside_a_run(h, "step the model");
+  run_in_session(L, h, [&](Simulation<2>& sim) { sim.step(n); });
   return 0;
 }
 
@@ -370,11 +306,8 @@ int model_run(lua_State* L) {
   const PeriodicCall call(a);  // read first: a bad call leaves the damping as it was
   refuse_inside_a_run(h, "step the model");
   const auto damping = a.optional_number("damping");
-  if (damping) {
-    Args::in_range("damping", *damping, 0.0, 1.0, true);
-    damping_of(h).set_alpha(*damping);
-  }
-  run_for(L, h, duration, std::numeric_limits<long>::max(), true, {}, {}, call);
+  if (damping) h.simulation.set_damping(Args::in_range("damping", *damping, 0.0, 1.0, true));
+  run_in_session(L, h, [&](Simulation<2>& sim) { sim.run(duration, call.run_call(L, h.model)); });
   return 0;
 }
 
@@ -383,12 +316,12 @@ int model_output(lua_State* L) {
   ModelHandle& h = self(L);
   Args a(L, 2, {"dir", "every", "fields", "grid", "probe_every", "at_run_end"});
   OutputSettings s;
-  const std::string& forced = session(L).out_dir;  // --out replaces the script's directory
-  if (a.has("dir") || forced.empty()) s.dir = a.string("dir");
-  if (!forced.empty()) s.dir = forced;
+  // A dir given is used as it is; without one, the --out directory (Session::output_dir), if any.
+  const Session& command_line = session(L);
+  s.dir = a.has("dir") || command_line.out_dir.empty() ? a.string("dir") : command_line.output_dir("");
   s.every = Args::positive("every", a.number("every", 0.1), "s");
   s.grid = a.boolean("grid", false);
-  h.write_at_run_end = a.boolean("at_run_end", true);
+  const bool at_run_end = a.boolean("at_run_end", true);
   if (const auto fields = a.names("fields")) {
     s.arrays.clear();
     for (const auto& name : *fields) {
@@ -398,19 +331,17 @@ int model_output(lua_State* L) {
   }
   if (auto pe = a.optional_number("probe_every")) {
     Args::at_least("probe_every", *pe, 0.0, "s");
-    for (auto& p : h.probes) p->set_every(*pe);
+    h.simulation.set_probe_every(*pe);
   }
-  h.output = std::make_unique<Output<2>>(s);
-  h.output->write(h.model, h.probes, h.phase);  // the state as it is now
+  h.simulation.set_output(s, at_run_end);  // writes the state as it is now
   return 0;
 }
 
 // m:write(): the current state on file now (when it is not already).
 int model_write(lua_State* L) {
   ModelHandle& h = self(L);
-  if (!h.output) throw Error("no output directory yet: call m:output{ dir = ... } first");
-  for (auto& p : h.probes) p->sample(h.model);
-  if (h.output->behind(h.model.time())) h.output->write(h.model, h.probes, h.phase);
+  if (!h.simulation.output()) throw Error("no output directory yet: call m:output{ dir = ... } first");
+  h.simulation.write();
   return 0;
 }
 
@@ -424,10 +355,11 @@ int model_plot(lua_State* L) {
   }
   for (const auto& q : quantities)
     if (!parse_field(q, 2)) throw Error("key 'quantities': '" + q + "' is not a field name (" + field_names(2) + ")");
-  if (!h.output) throw Error("no output directory yet: call m:output{ dir = ... } first");
-  if (h.probes.empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
-  write_file_atomically(h.output->settings().dir + "/probes.csv", probes_csv_text(h.probes));
-  const auto files = plot_probes(h.output->settings().dir, quantities);
+  const Output<2>* output = h.simulation.output();
+  if (!output) throw Error("no output directory yet: call m:output{ dir = ... } first");
+  if (h.simulation.probes().empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
+  write_file_atomically(output->settings().dir + "/probes.csv", probes_csv_text(h.simulation.probes()));
+  const auto files = plot_probes(output->settings().dir, quantities);
   lua_createtable(L, static_cast<int>(files.size()), 0);
   for (std::size_t i = 0; i < files.size(); ++i) {
     lua_pushstring(L, files[i].c_str());

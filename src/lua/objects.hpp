@@ -9,12 +9,9 @@
 
 #include "binding.hpp"
 #include "core/history.hpp"
-#include "core/local_damping.hpp"
 #include "core/material.hpp"
-#include "core/model.hpp"
-#include "core/probe.hpp"
 #include "core/region.hpp"
-#include "io/output.hpp"
+#include "run/simulation.hpp"
 
 namespace seismpm::lua {
 
@@ -25,17 +22,15 @@ inline constexpr const char* kMaterialType = "material";
 inline constexpr const char* kShapeType = "shape";
 inline constexpr const char* kHistoryType = "history";
 
-// A model with what the Lua side adds to it: probes, the materials it knows, the damping fix.
+// A simulation (the model, its probes, output, damping and runs) with what the Lua side adds to it:
+// the materials it knows by their Lua objects.
 struct ModelHandle {
-  explicit ModelHandle(const ModelSettings<2>& s) : model(s) {}
-  Model<2> model;
-  std::vector<std::shared_ptr<Probe<2>>> probes;
+  explicit ModelHandle(const ModelSettings<2>& s) : simulation(s) {}
+  ModelHandle(const ModelHandle&) = delete;
+  ModelHandle& operator=(const ModelHandle&) = delete;
+  Simulation<2> simulation;
+  Model<2>& model = simulation.model();  // what most bindings build and inspect
   std::map<const Material*, int> material_index;
-  std::shared_ptr<LocalDamping<2>> damping;
-  std::unique_ptr<Output<2>> output;
-  std::string phase = "run";
-  bool write_at_run_end = true;  // m:output{ at_run_end }: the state at the end of every run on file
-  bool running = false;          // a run is stepping: its call may not start another
 
   int material(const std::shared_ptr<const Material>& m) {
     auto it = material_index.find(m.get());
@@ -80,15 +75,17 @@ void open_phases(lua_State* L);
 void open_plot(lua_State* L, int mpm);
 
 // A Lua function that a run calls every `every` seconds of simulated time and at its end
-// (m:run{ every, call }, m:dynamic_phase{ every, call }); the run stops when it returns true.
+// (m:run{ every, call }, m:dynamic_phase{ every, call }); the run stops when it returns true. Holds a
+// registry reference to the function while it lives.
 struct PeriodicCall {
-  PeriodicCall() = default;
   // Reads `every` and `call` (both or neither) from a run's arguments.
   explicit PeriodicCall(Args& a);
   ~PeriodicCall();
   PeriodicCall(const PeriodicCall&) = delete;
   PeriodicCall& operator=(const PeriodicCall&) = delete;
-  bool active() const { return every > 0; }
+  // The call as the simulation makes it: the function with the model at stack index 1, through
+  // lua_pcall; a Lua error becomes a C++ exception once the Lua stack is clean again.
+  RunCall run_call(lua_State* L, const Model<2>& model) const;
 
   lua_State* state = nullptr;  // set when a function is held
   double every = 0;
@@ -99,12 +96,20 @@ struct PeriodicCall {
 // phase asks before it changes its state.
 void refuse_inside_a_run(const ModelHandle& h, const char* what);
 
-// Steps the model for `duration` s (see model_binding.cpp); true when `done` or the call ended the run.
-bool run_for(lua_State* L, ModelHandle& h, double duration, long max_steps, bool final_output,
-             const std::function<bool()>& done, const std::function<std::string()>& extra,
-             const PeriodicCall& call = {});
-// The model's local damping fix (created at alpha 0 on first use).
-LocalDamping<2>& damping_of(ModelHandle& h);
+// The simulation, ready for a run from this session: its progress display and Ctrl-C flag (cleared
+// now). run_in_session(L, h, run) calls run(h.simulation) so; an interrupted run leaves the Lua hook
+// cleared too, so that its message survives.
+void prepare_run(lua_State* L, ModelHandle& h);
+template <class Run>
+decltype(auto) run_in_session(lua_State* L, ModelHandle& h, Run&& run) {
+  prepare_run(L, h);
+  try {
+    return run(h.simulation);
+  } catch (const RunInterrupted&) {
+    lua_sethook(L, nullptr, 0, 0);  // the Ctrl-C hook would replace the message in the error handler
+    throw;
+  }
+}
 
 // {vx, vy} at `index` (numbers or histories; nil: at rest) as a rigid body's velocity.
 std::array<std::shared_ptr<const History>, 2> rigid_velocity(lua_State* L, int index, const std::string& what);

@@ -50,9 +50,9 @@ const Function kModel[] = {
        "seconds of simulated time (0: every step) and at the end of each run.",
        "local p1 = m:probe{ name = \"crest\", body = soil, at = {0.3, 0.5} }"},
       {"model:output", nullptr, "m:output{ dir, every = 0.1, fields, grid = false, probe_every, at_run_end = true }", {},
-       "Writes ParaView files into dir (m; --out DIR replaces it): particles_NNNNNN.vtu now, every `every` seconds "
-       "of simulated time and at the end of each run, listed with their times in particles.pvd (open that one in "
-       "ParaView); probes.csv with every field of every probe. fields = a list of names (default: all; components "
+       "Writes ParaView files into dir (as given; without dir: the --out directory): particles_NNNNNN.vtu now, "
+       "every `every` seconds of simulated time and at the end of each run, listed with their times in "
+       "particles.pvd (open that one in ParaView); probes.csv with every field of every probe. fields = a list of names (default: all; components "
        "such as ux select their vector); grid = true adds grid_NNNNNN.vtu with nodal mass, velocity and fixities; "
        "probe_every (s) sets every probe's sampling interval. at_run_end = false leaves out the extra file at the "
        "end of each run (a script that runs in short chunks then only writes every `every` seconds).",

@@ -14,7 +14,7 @@ int probe_tostring(lua_State* L) {
   const auto& p = self<ProbeObject>(L);
   std::ostringstream os;
   os << "probe '" << p.probe->name() << "': particle " << p.probe->particle_id() << ", " << p.probe->samples()
-     << " samples every " << p.probe->every() << " s";
+     << " samples every " << p.handle->simulation.probe_every(*p.probe) << " s";
   lua_pushstring(L, os.str().c_str());
   return 1;
 }

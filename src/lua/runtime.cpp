@@ -54,11 +54,11 @@ int version(lua_State* L) {
 }
 
 int out_dir(lua_State* L) {
-  const auto& dir = session(L).out_dir;
-  if (dir.empty())
-    lua_settop(L, 1);
+  const Session& s = session(L);
+  if (s.out_dir.empty())
+    lua_settop(L, 1);  // the default as given, whatever its type (nil when none)
   else
-    lua_pushstring(L, dir.c_str());
+    lua_pushstring(L, s.output_dir("").c_str());
   return 1;
 }
 
@@ -69,7 +69,9 @@ const Function kSession[] = {
      "local cell = mpm.param(\"cell\", 0.01)"},
     {"mpm.version", &guarded<version>, "mpm.version()", {}, "The seismpm version as a string.", "print(mpm.version())"},
     {"mpm.out_dir", &guarded<out_dir>, "mpm.out_dir(default)", {},
-     "The output directory: the one given with --out, or default.", "local dir = mpm.out_dir(\"out/column\")"},
+     "The output directory: the one given with --out, or default. --out replaces such defaults only: m:output "
+     "writes into the dir it is given, so a script that honours --out passes dir = mpm.out_dir(...).",
+     "local dir = mpm.out_dir(\"out/column\")"},
 };
 
 // Message handler: adds a traceback to an error message.

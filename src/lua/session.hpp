@@ -14,7 +14,10 @@ namespace seismpm::lua {
 
 struct Session {
   std::map<std::string, std::string> params;  // --set name=value
-  std::string out_dir;                        // --out: replaces every output directory when set
+  // --out. The one rule for it: it replaces a DEFAULT output directory, never one a script names.
+  // mpm.out_dir(default) and m:output without dir both ask output_dir(); m:output{ dir } writes into dir.
+  std::string out_dir;
+  std::string output_dir(const std::string& fallback) const { return out_dir.empty() ? fallback : out_dir; }
   Progress::Mode progress = Progress::Mode::Log;
   std::atomic<bool> interrupted{false};
   std::string script_dir;                     // directory of the script being run, for its data files

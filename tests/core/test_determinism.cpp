@@ -63,8 +63,8 @@ TEST_CASE("contact and rigid bodies keep results bit-identical for any number of
     cases::MovingBaseBlock c;
     c.cell = 0.05;
     auto b = c.build();
-    c.settle_and_start(b);  // 0.5 s settling, then the base slides
-    b.model->run(0.2);
+    c.settle_and_start(b);  // the gravity phase, then the base slides
+    b.simulation->run(0.2);
     return b;
   };
   const auto one = run(1);

@@ -210,3 +210,23 @@ TEST_CASE("probe plots are PNG images, one per quantity", "[io][plot]") {
   CHECK_THROWS_WITH(plot_probes(dir, {"speed"}), Catch::Contains("no probe column ends in .speed"));
   CHECK_THROWS_WITH(plot_probes(dir + "/none", {"ux"}), Catch::Contains("probes.csv does not exist"));
 }
+
+TEST_CASE("the --out directory replaces a default output directory, never one the script names", "[io][lua]") {
+  const std::string cli = fresh_dir("out_rule_cli"), named = fresh_dir("out_rule_named");
+  const std::string model = R"(
+    m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
+    mat = mpm.material.linear_elastic{ density = 2000, young = 1e6, poisson = 0.3 }
+    b = m:body{ material = mat, shape = mpm.shape.rectangle{ 0.2, 0.2, 0.6, 0.6 } }
+  )";
+  test::LuaFixture f;
+  f.session.out_dir = cli;
+  CHECK(f.error_of(model + "assert(mpm.out_dir('out/default') == '" + cli + "')") == "");
+  CHECK(f.error_of(model + "m:output{ dir = '" + named + "', every = 0.1 }") == "");
+  CHECK(fs::exists(named + "/particles.pvd"));
+  CHECK_FALSE(fs::exists(cli));
+  CHECK(f.error_of(model + "m:output{ every = 0.1 }") == "");  // no dir: the --out one
+  CHECK(fs::exists(cli + "/particles.pvd"));
+  test::LuaFixture plain;  // no --out: the default as given, and m:output needs its dir
+  CHECK(plain.error_of("assert(mpm.out_dir('out/default') == 'out/default' and mpm.out_dir() == nil)") == "");
+  CHECK_THAT(plain.error_of(model + "m:output{ every = 0.1 }"), Catch::Contains("missing key 'dir'"));
+}

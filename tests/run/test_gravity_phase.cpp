@@ -1,14 +1,16 @@
-// The gravity phase's pieces: K0 stresses from the overburden, the equilibrium measure.
+// The gravity phase: K0 stresses from the overburden, the equilibrium measure, and the phase itself
+// (Simulation::gravity_phase) bringing a column to rest.
 #include <catch2/catch.hpp>
 
 #include "core/error.hpp"
-#include "core/gravity_phase.hpp"
 #include "core/local_damping.hpp"
 #include "materials/linear_elastic.hpp"
+#include "run/gravity_phase.hpp"
+#include "run/simulation.hpp"
 
 using namespace seismpm;
 
-TEST_CASE("K0 stresses: sigma_v is the overburden of the layers above, sigma_h = k0 sigma_v", "[core][gravity]") {
+TEST_CASE("K0 stresses: sigma_v is the overburden of the layers above, sigma_h = k0 sigma_v", "[run][gravity]") {
   const int dim_case = GENERATE(2, 3);
   CAPTURE(dim_case);
   auto check = [](auto dim) {
@@ -54,7 +56,7 @@ TEST_CASE("K0 stresses: sigma_v is the overburden of the layers above, sigma_h =
     check(std::integral_constant<int, 3>{});
 }
 
-TEST_CASE("K0 needs gravity pointing down and k0 > 0", "[core][gravity][errors]") {
+TEST_CASE("K0 needs gravity pointing down and k0 > 0", "[run][gravity][errors]") {
   ModelSettings<2> s;
   s.gravity = Vec<2>(9.81, 0.0);
   Model<2> m(s);
@@ -62,36 +64,75 @@ TEST_CASE("K0 needs gravity pointing down and k0 > 0", "[core][gravity][errors]"
   CHECK_THROWS_WITH(set_k0_stresses(m, 0.0), Catch::Contains("k0 must be > 0"));
 }
 
-TEST_CASE("the equilibrium measure falls below the tolerance only at rest", "[core][gravity]") {
-  ModelSettings<2> s;
-  s.upper = Vec<2>(0.4, 1.2);
-  s.cell = 0.05;
-  s.gravity = Vec<2>(0.0, -9.81);
-  Model<2> m(s);
+namespace {
+
+// A 0.4 m x 1 m elastic column on a fixed base between smooth walls.
+void column(Model<2>& m) {
   const int mat = m.add_material(std::make_shared<LinearElastic>(2000.0, 1e7, 0.3));
   m.fill_box(m.add_body("column", 2), mat, Vec<2>(0.0, 0.0), Vec<2>(0.4, 1.0));
   m.grid().fix(Side::Bottom, FixX | FixY);
   m.grid().fix(Side::Left, FixX);
   m.grid().fix(Side::Right, FixX);
+}
+
+ModelSettings<2> column_settings() {
+  ModelSettings<2> s;
+  s.upper = Vec<2>(0.4, 1.2);
+  s.cell = 0.05;
+  s.gravity = Vec<2>(0.0, -9.81);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("the equilibrium measure: all of the self-weight is unbalanced after the first step", "[run][gravity]") {
+  Model<2> m(column_settings());
+  column(m);
   m.add_fix(std::make_shared<LocalDamping<2>>(0.7));
   m.set_balance_measure(true);
   EquilibriumMonitor<2> eq(0.005);
   m.step();
   eq.update(m);
-  // First step from rest: all of the self-weight is unbalanced.
   CHECK(eq.force_ratio() == Approx(1.0).epsilon(0.05));
+  CHECK(eq.energy_ratio() == Approx(1.0));  // the kinetic energy is its own peak so far
   CHECK_FALSE(eq.reached());
-  while (!eq.reached() && m.time() < 3.0) {
-    m.step();
-    eq.update(m);
-  }
-  CAPTURE(m.time(), eq.force_ratio(), eq.energy_ratio());
-  CHECK(eq.reached());
-  // At the end the column is where statics puts it: the base carries its weight (tested in Lua too).
+  CHECK_THAT(equilibrium_text(eq), Catch::StartsWith("unbalanced ") && Catch::EndsWith("of peak (tol 5e-03)"));
+}
+
+TEST_CASE("the gravity phase brings a column to rest: the base carries its weight", "[run][gravity]") {
+  Simulation<2> sim(column_settings());
+  column(sim.model());
+  const GravityPhaseResult r = sim.gravity_phase(GravityPhaseSettings{0.7, 0.005, 3.0});
+  const auto& m = sim.model();
+  CAPTURE(r.time, r.steps, r.force_ratio, r.energy_ratio);
+  CHECK(sim.phase() == "gravity");
+  CHECK(r.time == m.time());
+  CHECK(r.steps == m.steps());
+  CHECK(r.steps > 10);
+  CHECK(r.force_ratio < 0.005);
+  CHECK(r.energy_ratio < 0.005);
+  // At the end the column is where statics puts it (tested in Lua too), with displacements reset.
   const auto& P = m.particles();
-  double bottom = 0.0;
+  double bottom = 0.0, moved = 0.0;
   int n = 0;
-  for (std::size_t p = 0; p < P.size(); ++p)
+  for (std::size_t p = 0; p < P.size(); ++p) {
     if (P.x[p][1] < 0.05) bottom += P.stress[p][1], ++n;
+    moved = std::max(moved, P.u[p].norm());
+  }
   CHECK(-bottom / n == Approx(2000.0 * 9.81 * (1.0 - 0.025)).epsilon(0.02));
+  CHECK(moved == 0.0);
+}
+
+TEST_CASE("a gravity phase that finds no equilibrium says so", "[run][gravity][errors]") {
+  ModelSettings<2> s = column_settings();
+  Simulation<2> sim(s);
+  const int mat = sim.model().add_material(std::make_shared<LinearElastic>(2000.0, 1e7, 0.3));
+  sim.model().fill_box(sim.model().add_body("falling", 2), mat, Vec<2>(0.1, 0.6), Vec<2>(0.3, 0.9));
+  CHECK_THROWS_WITH(sim.gravity_phase(GravityPhaseSettings{0.7, 0.005, 0.05}),
+                    Catch::StartsWith("no static equilibrium within max_time = 0.05 s: out-of-balance force") &&
+                        Catch::Contains("the outputs show the state at t = 0.05 s"));
+  CHECK(sim.model().time() == Approx(0.05).epsilon(1e-12));
+  CHECK_FALSE(sim.running());
+  Simulation<2> empty(s);
+  CHECK_THROWS_WITH(empty.gravity_phase({}), "the model has no particles");
 }

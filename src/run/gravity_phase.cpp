@@ -2,9 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
-#include "error.hpp"
+#include "core/error.hpp"
 
 namespace seismpm {
 
@@ -20,6 +21,14 @@ void EquilibriumMonitor<Dim>::update(const Model<Dim>& model) {
   // elastic strain energy.
   const double scale = std::max(peak_energy_, 1e-3 * model.strain_energy());
   energy_ratio_ = scale > 0.0 ? kinetic / scale : 0.0;
+}
+
+template <int Dim>
+std::string equilibrium_text(const EquilibriumMonitor<Dim>& e) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "unbalanced %.1e, kinetic %.1e of peak (tol %.0e)", e.force_ratio(), e.energy_ratio(),
+                e.tolerance());
+  return buf;
 }
 
 template <int Dim>
@@ -80,6 +89,8 @@ void set_k0_stresses(Model<Dim>& model, double k0) {
 
 template class EquilibriumMonitor<2>;
 template class EquilibriumMonitor<3>;
+template std::string equilibrium_text<2>(const EquilibriumMonitor<2>&);
+template std::string equilibrium_text<3>(const EquilibriumMonitor<3>&);
 template void set_k0_stresses<2>(Model<2>&, double);
 template void set_k0_stresses<3>(Model<3>&, double);
 

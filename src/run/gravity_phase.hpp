@@ -1,8 +1,11 @@
-// The gravity (initial stress) phase: self-weight with local damping until static equilibrium
-// (PHYSICS.md, "Local damping"), or the K0 shortcut for level ground.
+// The gravity (initial stress) phase's parts: its settings and result, the equilibrium criterion that
+// ends it, and the K0 shortcut for level ground. The phase itself, self-weight with local damping until
+// static equilibrium, is Simulation::gravity_phase.
 #pragma once
 
-#include "model.hpp"
+#include <string>
+
+#include "core/model.hpp"
 
 namespace seismpm {
 
@@ -11,6 +14,13 @@ struct GravityPhaseSettings {
   double tolerance = 0.005;  // on both equilibrium ratios
   double max_time = 10.0;    // s of simulated time before the phase gives up
   double k0 = 0.0;           // > 0: set K0 stresses first, then settle
+};
+
+// How the phase ended: its duration and steps, and both equilibrium ratios at its end.
+struct GravityPhaseResult {
+  double time = 0.0;  // s
+  long steps = 0;
+  double force_ratio = 0.0, energy_ratio = 0.0;
 };
 
 // Watches a damped run for static equilibrium: the out-of-balance force relative to the external
@@ -33,6 +43,10 @@ class EquilibriumMonitor {
   double force_ratio_ = 1.0, energy_ratio_ = 1.0, peak_energy_ = 0.0;
   long steps_ = 0;
 };
+
+// "unbalanced 1.2e-03, kinetic 3.4e-04 of peak (tol 5e-03)": the ratios for the progress line.
+template <int Dim>
+std::string equilibrium_text(const EquilibriumMonitor<Dim>& e);
 
 // K0 initial stresses for level ground: on every deformable particle sigma_v = rho g depth, where
 // the overburden is the mass per unit width of the deformable particles above it in its grid column

@@ -1,17 +1,13 @@
 #include "probe.hpp"
 
-#include <cmath>
-#include <limits>
-
-#include "error.hpp"
-#include "model.hpp"
+#include "core/error.hpp"
+#include "core/model.hpp"
 
 namespace seismpm {
 
 template <int Dim>
-Probe<Dim>::Probe(const Model<Dim>& model, std::string name, int particle_id, double every)
-    : name_(std::move(name)), id_(particle_id), every_(every), fields_(particle_fields(Dim)) {
-  if (!(every >= 0.0)) throw InputError("probe '" + name_ + "': every must be >= 0 (s)");
+Probe<Dim>::Probe(const Model<Dim>& model, std::string name, int particle_id)
+    : name_(std::move(name)), id_(particle_id), fields_(particle_fields(Dim)) {
   if (particle_id < 0 || particle_id >= static_cast<int>(model.particles().size()))
     throw InputError("probe '" + name_ + "': no particle with id " + std::to_string(particle_id));
   sample(model);
@@ -23,19 +19,6 @@ void Probe<Dim>::sample(const Model<Dim>& model) {
   const std::size_t p = model.index_of(id_);
   times_.push_back(model.time());
   for (Field f : fields_) values_.push_back(field_value(model.particles(), p, f));
-}
-
-template <int Dim>
-double Probe<Dim>::next_sample_time() const {
-  if (every_ == 0.0) return std::numeric_limits<double>::infinity();
-  const double last = times_.back();
-  return (std::floor(last / every_ + 1e-6) + 1.0) * every_;
-}
-
-template <int Dim>
-void Probe<Dim>::after_step(Model<Dim>& model) {
-  // Sample when the step reached the next multiple of `every` (or every step when every = 0).
-  if (every_ == 0.0 || model.time() >= next_sample_time() - 1e-9 * every_) sample(model);
 }
 
 template <int Dim>

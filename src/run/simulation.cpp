@@ -1,0 +1,256 @@
+#include "simulation.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace seismpm {
+
+namespace {
+
+// Sets a flag for as long as it lives: a run's `running` state, cleared however the run ends.
+struct FlagScope {
+  explicit FlagScope(bool& f) : flag(f) { flag = true; }
+  ~FlagScope() { flag = false; }
+  FlagScope(const FlagScope&) = delete;
+  FlagScope& operator=(const FlagScope&) = delete;
+  bool& flag;
+};
+
+// A run's part of the schedule (its end, its call's times), removed however the run ends.
+struct RunScope {
+  RunScope(EventSchedule& s, double start, double duration, const RunCall* run_call) : schedule(s) {
+    schedule.begin_run(start, duration);
+    if (run_call && run_call->active()) call = schedule.add(EventSchedule::Spacing::FromStart, run_call->every, start);
+  }
+  ~RunScope() {
+    if (call >= 0) schedule.remove(call);
+    schedule.end_run();
+  }
+  RunScope(const RunScope&) = delete;
+  RunScope& operator=(const RunScope&) = delete;
+  EventSchedule& schedule;
+  EventSchedule::Stream call = -1;
+};
+
+}  // namespace
+
+// --- what runs record ---
+
+template <int Dim>
+std::shared_ptr<Probe<Dim>> Simulation<Dim>::add_probe(const std::string& name, int particle_id, double every) {
+  if (!(every >= 0.0)) throw InputError("probe '" + name + "': every must be >= 0 (s)");
+  auto probe = std::make_shared<Probe<Dim>>(model_, name, particle_id);  // its first sample
+  const auto stream = schedule_.add(EventSchedule::Spacing::Multiples, every, 0.0);
+  schedule_.fired(stream, model_.time());
+  probes_.push_back(probe);
+  probe_streams_.push_back(stream);
+  return probe;
+}
+
+template <int Dim>
+double Simulation<Dim>::probe_every(const Probe<Dim>& probe) const {
+  for (std::size_t k = 0; k < probes_.size(); ++k)
+    if (probes_[k].get() == &probe) return schedule_.every(probe_streams_[k]);
+  throw std::invalid_argument("probe '" + std::string(probe.name()) + "' belongs to another simulation");
+}
+
+template <int Dim>
+void Simulation<Dim>::set_probe_every(double every) {
+  if (!(every >= 0.0)) throw InputError("probe_every must be >= 0 (s)");
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    schedule_.remove(probe_streams_[k]);
+    probe_streams_[k] = schedule_.add(EventSchedule::Spacing::Multiples, every, 0.0);
+    schedule_.fired(probe_streams_[k], probes_[k]->times().back());  // counted on from the last sample
+  }
+}
+
+template <int Dim>
+void Simulation<Dim>::set_output(const OutputSettings& settings, bool at_run_end) {
+  auto output = std::make_unique<Output<Dim>>(settings);  // creates the directory, or throws naming it
+  output_ = std::move(output);
+  write_at_run_end_ = at_run_end;
+  if (output_stream_ >= 0) schedule_.remove(output_stream_);
+  // Output times run from t = 0 whenever the output starts; the state as it is now goes first.
+  output_stream_ = schedule_.add(EventSchedule::Spacing::Running, settings.every, 0.0);
+  write_output();
+}
+
+template <int Dim>
+void Simulation<Dim>::write() {
+  if (!output_) throw InputError("no output directory yet");
+  for (std::size_t k = 0; k < probes_.size(); ++k) sample_probe(k);
+  if (output_->behind(model_.time())) write_output();
+}
+
+template <int Dim>
+void Simulation<Dim>::sample_probe(std::size_t k) {
+  probes_[k]->sample(model_);
+  schedule_.fired(probe_streams_[k], model_.time());
+}
+
+template <int Dim>
+void Simulation<Dim>::write_output() {
+  output_->write(model_, probes_, phase_);
+  schedule_.fired(output_stream_, model_.time());
+}
+
+template <int Dim>
+void Simulation<Dim>::set_damping(double alpha) {
+  if (!damping_) {
+    damping_ = std::make_shared<LocalDamping<Dim>>(0.0);
+    model_.add_fix(damping_);
+  }
+  damping_->set_alpha(alpha);
+}
+
+// --- runs and phases ---
+
+template <int Dim>
+RunEnd Simulation<Dim>::run(double duration, const RunCall& call) {
+  RunSpec spec{duration};
+  spec.call = &call;
+  return run_for(spec);
+}
+
+template <int Dim>
+void Simulation<Dim>::step(long n) {
+  RunSpec spec{std::numeric_limits<double>::infinity(), n, false};
+  run_for(spec);
+}
+
+template <int Dim>
+GravityPhaseResult Simulation<Dim>::gravity_phase(const GravityPhaseSettings& g) {
+  if (model_.particles().size() == 0) throw InputError("the model has no particles");
+  begin_phase("gravity", false);  // rigid bodies at rest
+  set_damping(g.damping);
+  if (g.k0 > 0.0) set_k0_stresses(model_, g.k0);
+  EquilibriumMonitor<Dim> equilibrium(g.tolerance);
+  RunSpec spec{g.max_time};
+  spec.done = [&] {
+    equilibrium.update(model_);
+    return equilibrium.reached();
+  };
+  spec.extra = [&] { return equilibrium_text(equilibrium); };
+  const double t0 = model_.time();
+  const long s0 = model_.steps();
+  model_.set_balance_measure(true);
+  RunEnd how = RunEnd::Completed;
+  try {
+    how = run_for(spec);
+  } catch (...) {
+    model_.set_balance_measure(false);
+    throw;
+  }
+  model_.set_balance_measure(false);
+  if (how != RunEnd::Reached) {
+    std::ostringstream os;
+    os << "no static equilibrium within max_time = " << g.max_time << " s: out-of-balance force "
+       << equilibrium.force_ratio() << " of the external force, kinetic energy " << equilibrium.energy_ratio()
+       << " of its peak (tolerance " << g.tolerance
+       << "). Something keeps moving: a slope steeper than its strength allows, a body without support, or too "
+          "short a max_time; the outputs show the state at t = "
+       << model_.time() << " s";
+    throw SimulationError(os.str());
+  }
+  // Displacements and strains start from zero in the next phase; stresses and plastic state are kept.
+  model_.particles().reset_kinematics();
+  const GravityPhaseResult result{model_.time() - t0, model_.steps() - s0, equilibrium.force_ratio(),
+                                  equilibrium.energy_ratio()};
+  if (progress_mode_ != Progress::Mode::Quiet)
+    std::fprintf(stderr, "gravity phase: equilibrium after %.4g s (%ld steps): %s\n", result.time, result.steps,
+                 equilibrium_text(equilibrium).c_str());
+  return result;
+}
+
+template <int Dim>
+RunEnd Simulation<Dim>::dynamic_phase(double duration, double damping, const RunCall& call) {
+  if (model_.particles().size() == 0) throw InputError("the model has no particles");
+  begin_phase("dynamic", true);  // histories start now
+  set_damping(damping);
+  return run(duration, call);
+}
+
+template <int Dim>
+void Simulation<Dim>::begin_phase(const char* name, bool rigid_bodies_move) {
+  if (running_) throw std::logic_error("a run's call may not start a phase");
+  phase_ = name;
+  model_.begin_phase(rigid_bodies_move);
+}
+
+// --- the run loop ---
+
+// Steps until the run's end (or max_steps, or done() after a step), landing exactly on every event of
+// the schedule on the way: probe samples, outputs, the run's call. The end of the run is sampled and,
+// for runs and phases, on file.
+template <int Dim>
+RunEnd Simulation<Dim>::run_for(const RunSpec& spec) {
+  if (running_) throw std::logic_error("a run's call may not step the model");
+  if (spec.call && spec.call->active() && !spec.call->function) throw InputError("run: a call without a function");
+  FlagScope running(running_);
+  Progress progress(stderr, progress_mode_);
+  const double start = model_.time();
+  RunScope scope(schedule_, start, spec.duration, spec.call);
+  progress.start(phase_, start, schedule_.run_end(), model_.particles().size(), model_.steps(),
+                 static_cast<bool>(spec.done));
+  RunEnd how = RunEnd::Completed;
+  try {
+    for (long taken = 0; !schedule_.run_over(model_.time()) && taken < spec.max_steps; ++taken) {
+      stop_if_interrupted(progress);
+      model_.step(schedule_.next_time() - model_.time());
+      how = after_step(spec, scope.call, progress);
+      if (how != RunEnd::Completed) break;
+    }
+  } catch (const SimulationError&) {
+    // The files written so far stay as they are: valid, up to the last output time.
+    progress.finish(model_.time(), model_.steps(), "failed");
+    throw;
+  }
+  finish_run(spec, how, progress);
+  return how;
+}
+
+// What a step reached: probe samples, an output, the end criterion, the run's call (at its times and
+// at the run's end).
+template <int Dim>
+RunEnd Simulation<Dim>::after_step(const RunSpec& spec, EventSchedule::Stream call, Progress& progress) {
+  const double t = model_.time();
+  for (std::size_t k = 0; k < probes_.size(); ++k)
+    if (schedule_.reached(probe_streams_[k], t)) sample_probe(k);
+  if (output_ && schedule_.reached(output_stream_, t)) write_output();
+  const bool done = spec.done && spec.done();
+  bool by_call = false;
+  if (call >= 0 && (schedule_.reached(call, t) || schedule_.run_over(t))) {
+    schedule_.fired(call, t);
+    by_call = spec.call->function();
+  }
+  progress.update(t, model_.steps(), model_.dt(), spec.extra ? spec.extra() : std::string());
+  return by_call ? RunEnd::ByCall : done ? RunEnd::Reached : RunEnd::Completed;
+}
+
+template <int Dim>
+void Simulation<Dim>::finish_run(const RunSpec& spec, RunEnd how, Progress& progress) {
+  for (std::size_t k = 0; k < probes_.size(); ++k) sample_probe(k);
+  // The end of a run is always on file, so ParaView and probes.csv show the final state.
+  if (spec.final_output && write_at_run_end_ && output_ && output_->behind(model_.time())) write_output();
+  const char* text = how == RunEnd::ByCall                  ? "stopped by its call"
+                     : how == RunEnd::Reached || !spec.done ? "done"
+                                                            : "stopped at its time limit";
+  progress.finish(model_.time(), model_.steps(), text);
+}
+
+template <int Dim>
+void Simulation<Dim>::stop_if_interrupted(Progress& progress) const {
+  if (!interrupt_ || !interrupt_->load()) return;
+  progress.finish(model_.time(), model_.steps(), "interrupted");
+  std::ostringstream os;
+  os << "interrupted (Ctrl-C) at t = " << model_.time() << " s, step " << model_.steps() << "; the model is intact";
+  throw RunInterrupted(os.str());
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+}  // namespace seismpm

@@ -1,0 +1,127 @@
+// A simulation: the model and what a run adds to it (probes, the output directory, the local damping,
+// the current phase's name), with ONE event schedule that every step lands on: output times, probe
+// samples, a run's periodic call, the run's end. Runs and calculation phases live here; the Lua layer
+// reads arguments and calls them, and C++ tests and examples use them as they are.
+#pragma once
+
+#include <atomic>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/local_damping.hpp"
+#include "core/model.hpp"
+#include "event_schedule.hpp"
+#include "gravity_phase.hpp"
+#include "io/output.hpp"
+#include "io/probe.hpp"
+#include "io/progress.hpp"
+
+namespace seismpm {
+
+// A function a run calls every `every` s of simulated time (hit exactly) and at its end, between steps;
+// the run ends when it returns true. It may not run the simulation itself.
+struct RunCall {
+  double every = 0.0;  // s; 0: no call
+  std::function<bool()> function;
+  bool active() const { return every > 0.0; }
+};
+
+// How a run ended.
+enum class RunEnd {
+  Completed,  // its duration (or its number of steps) is done
+  Reached,    // its end criterion was met (the gravity phase: equilibrium)
+  ByCall,     // its call returned true
+};
+
+// A run stopped by its interrupt flag (Ctrl-C) before a step; the model is intact, as after any step.
+class RunInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+template <int Dim>
+class Simulation {
+ public:
+  explicit Simulation(const ModelSettings<Dim>& settings) : model_(settings) {}
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  Model<Dim>& model() { return model_; }
+  const Model<Dim>& model() const { return model_; }
+
+  // --- what runs record ---
+  // A control point on the particle created as number `particle_id`: sampled now, every `every` s
+  // (0: every step) and at the end of every run.
+  std::shared_ptr<Probe<Dim>> add_probe(const std::string& name, int particle_id, double every);
+  const std::vector<std::shared_ptr<Probe<Dim>>>& probes() const { return probes_; }
+  double probe_every(const Probe<Dim>& probe) const;
+  void set_probe_every(double every);  // every probe's interval, from its last sample on
+  // The output directory: written now, every settings.every s, and (at_run_end) at the end of each run.
+  void set_output(const OutputSettings& settings, bool at_run_end = true);
+  const Output<Dim>* output() const { return output_.get(); }
+  // Samples the probes and writes the current state, unless it is on file already.
+  void write();
+
+  // --- how runs behave ---
+  // The local damping coefficient for this and later runs (in [0, 1)).
+  void set_damping(double alpha);
+  // The progress display of runs (on stderr); quiet unless set.
+  void set_progress(Progress::Mode mode) { progress_mode_ = mode; }
+  // A run stops with RunInterrupted before the next step once *flag is true (Ctrl-C); null: never.
+  void set_interrupt(const std::atomic<bool>* flag) { interrupt_ = flag; }
+  // "run" before any phase, then "gravity" or "dynamic"; written into every output file.
+  const std::string& phase() const { return phase_; }
+  // True while a run steps (its call is being made): another run may not start.
+  bool running() const { return running_; }
+
+  // --- runs and phases ---
+  // Continues the current phase for `duration` s.
+  RunEnd run(double duration, const RunCall& call = {});
+  // Takes n steps (the end of a number of steps is not written to the output).
+  void step(long n);
+  // Self-weight with rigid bodies at rest and local damping until static equilibrium; displacements
+  // and strains reset at its end. Throws SimulationError when max_time passes first.
+  GravityPhaseResult gravity_phase(const GravityPhaseSettings& settings);
+  // Shaking: rigid bodies follow their histories, read at the phase time, which starts now.
+  RunEnd dynamic_phase(double duration, double damping, const RunCall& call = {});
+
+ private:
+  // One run: up to `duration` s or `max_steps` steps, or until `done()` says so after a step.
+  struct RunSpec {
+    double duration;
+    long max_steps = std::numeric_limits<long>::max();
+    bool final_output = true;             // the end of the run on file (when at_run_end)
+    std::function<bool()> done = {};      // the end criterion; none: the run ends at its duration
+    std::function<std::string()> extra = {};  // more text for the progress line
+    const RunCall* call = nullptr;
+  };
+  RunEnd run_for(const RunSpec& spec);
+  RunEnd after_step(const RunSpec& spec, EventSchedule::Stream call, Progress& progress);
+  void finish_run(const RunSpec& spec, RunEnd how, Progress& progress);
+  void stop_if_interrupted(Progress& progress) const;
+  void sample_probe(std::size_t k);
+  void write_output();
+  void begin_phase(const char* name, bool rigid_bodies_move);
+
+  Model<Dim> model_;
+  EventSchedule schedule_;
+  std::vector<std::shared_ptr<Probe<Dim>>> probes_;
+  std::vector<EventSchedule::Stream> probe_streams_;  // per probe
+  std::unique_ptr<Output<Dim>> output_;
+  EventSchedule::Stream output_stream_ = -1;
+  bool write_at_run_end_ = true;
+  std::shared_ptr<LocalDamping<Dim>> damping_;  // attached on first use
+  std::string phase_ = "run";
+  Progress::Mode progress_mode_ = Progress::Mode::Quiet;
+  const std::atomic<bool>* interrupt_ = nullptr;
+  bool running_ = false;
+};
+
+extern template class Simulation<2>;
+extern template class Simulation<3>;
+
+}  // namespace seismpm
