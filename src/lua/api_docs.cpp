@@ -101,8 +101,10 @@ std::string call_of(const Function& f) {
 
 const std::vector<ApiSection>& api_sections() {
   static const std::vector<ApiSection> sections = {
-      {"Models: mpm.model and the model's methods", model_functions()},
-      {"Phases: initial stresses and shaking", phase_functions()},
+      {"Models", model_functions()},
+      {"Building a model: bodies, contact, fixities, probes", model_building_functions()},
+      {"Runs and phases: initial stresses and shaking", phase_functions()},
+      {"Output: ParaView files, probe histories, plots", output_functions()},
       {"Bodies", body_functions()},
       {"Probes", probe_functions()},
       {"Materials", material_functions()},

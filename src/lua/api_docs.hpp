@@ -12,7 +12,9 @@ namespace seismpm::lua {
 
 // The table of each binding file.
 std::span<const Function> model_functions();
+std::span<const Function> model_building_functions();
 std::span<const Function> phase_functions();
+std::span<const Function> output_functions();
 std::span<const Function> body_functions();
 std::span<const Function> probe_functions();
 std::span<const Function> material_functions();

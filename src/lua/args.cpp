@@ -57,13 +57,6 @@ Args::Args(lua_State* L, int index, std::span<const Key> keys, const char* withi
   for (const Key& k : keys_) check(k);
 }
 
-Args::Args(lua_State* L, int index, std::initializer_list<const char*> allowed, bool positional)
-    : L_(L), index_(lua_absindex(L, index)) {
-  if (!lua_istable(L_, index_))
-    throw Error("expects a table of named arguments { key = value, ... }, got " + type_name(L_, index_));
-  reject_unknown_keys(std::vector<std::string>(allowed.begin(), allowed.end()), positional);
-}
-
 void Args::reject_unknown_keys(const std::vector<std::string>& known, bool positional) const {
   const lua_Integer n = positional ? static_cast<lua_Integer>(lua_rawlen(L_, index_)) : 0;
   lua_pushnil(L_);
@@ -92,14 +85,9 @@ void Args::reject_unknown_keys(const std::vector<std::string>& known, bool posit
 
 std::string Args::context() const { return within_ ? quoted(within_) + ": " : std::string(); }
 
-const Key* Args::find(const char* key) const {
-  for (const Key& k : keys_)
-    if (std::string(k.name) == key) return &k;
-  return nullptr;
-}
-
 const Key& Args::spec(const char* key) const {
-  if (const Key* k = find(key)) return *k;
+  for (const Key& k : keys_)
+    if (std::string(k.name) == key) return k;
   throw std::logic_error(std::string("the binding reads key '") + key + "', which its key table does not describe");
 }
 
@@ -181,17 +169,17 @@ std::optional<double> Args::optional_number(const char* key) const {
     if (t != LUA_TNUMBER) throw Error(context() + quoted(key) + " must be a number, got " + type_name(L_, -1));
     const double v = lua_tonumber(L_, -1);
     if (!std::isfinite(v)) throw Error(context() + quoted(key) + " must be a finite number, got " + number_text(v));
-    const Key* k = find(key);
-    if (k && !k->forwarded && k->range.bounded() && !k->range.contains(v))
-      throw Error(context() + quoted(key) + " must be " + k->range.text() + unit_suffix(k->unit) + ", got " + number_text(v));
+    const Key& k = spec(key);
+    if (!k.forwarded && k.range.bounded() && !k.range.contains(v))
+      throw Error(context() + quoted(key) + " must be " + k.range.text() + unit_suffix(k.unit) + ", got " + number_text(v));
     return v;
   });
 }
 
 double Args::number(const char* key) const {
   if (auto v = optional_number(key)) return *v;
-  const Key* k = find(key);
-  if (k && k->has_number_default()) return k->number;
+  const Key& k = spec(key);
+  if (k.has_number_default()) return k.number;
   throw Error(context() + "missing " + quoted(key));
 }
 
@@ -215,8 +203,8 @@ std::string Args::string(const char* key) const {
   const int t = push(key);
   return read_top(L_, [&]() -> std::string {
     if (t == LUA_TSTRING) return lua_tostring(L_, -1);
-    const Key* k = find(key);
-    if (t == LUA_TNIL && k && k->text) return k->text;
+    const Key& k = spec(key);
+    if (t == LUA_TNIL && k.text) return k.text;
     if (t == LUA_TNIL) throw Error(context() + "missing " + quoted(key));
     throw Error(context() + quoted(key) + " must be a string, got " + type_name(L_, -1));
   });
@@ -264,8 +252,8 @@ bool Args::boolean(const char* key) const {
 Vec<2> Args::point(const char* key) const {
   if (push(key) == LUA_TNIL) {
     lua_pop(L_, 1);
-    const Key* k = find(key);
-    if (k && k->has_point_default()) return Vec<2>(k->point[0], k->point[1]);
+    const Key& k = spec(key);
+    if (k.has_point_default()) return Vec<2>(k.point[0], k.point[1]);
     throw Error(context() + "missing " + quoted(key));
   }
   return read_top(L_, [&] { return to_point(L_, -1, context() + quoted(key)); });
@@ -274,9 +262,9 @@ Vec<2> Args::point(const char* key) const {
 std::optional<std::vector<std::string>> Args::names(const char* key) const {
   if (push(key) == LUA_TNIL) {
     lua_pop(L_, 1);
-    const Key* k = find(key);
-    if (k && k->text) return split(k->text);
-    if (k && k->mandatory) throw Error(context() + "missing " + quoted(key));
+    const Key& k = spec(key);
+    if (k.text) return split(k.text);
+    if (k.mandatory) throw Error(context() + "missing " + quoted(key));
     return std::nullopt;
   }
   return read_top(L_, [&] {
@@ -299,23 +287,6 @@ Args Args::table(const char* key) const {
   const Key& k = spec(key);
   push(key);
   return Args(L_, -1, k.keys, k.name);
-}
-
-double Args::positive(const char* key, double v, const char* unit) {
-  if (!(v > 0.0)) throw Error(quoted(key) + " must be > 0" + unit_suffix(unit) + ", got " + number_text(v));
-  return v;
-}
-
-double Args::at_least(const char* key, double v, double lo, const char* unit) {
-  if (!(v >= lo)) throw Error(quoted(key) + " must be >= " + number_text(lo) + unit_suffix(unit) + ", got " + number_text(v));
-  return v;
-}
-
-double Args::in_range(const char* key, double v, double lo, double hi, bool hi_open, const char* unit) {
-  if (!(v >= lo && (hi_open ? v < hi : v <= hi)))
-    throw Error(quoted(key) + " must be in [" + number_text(lo) + ", " + number_text(hi) + (hi_open ? ")" : "]") +
-                unit_suffix(unit) + ", got " + number_text(v));
-  return v;
 }
 
 Vec<2> to_point(lua_State* L, int index, const std::string& what) {

@@ -7,7 +7,6 @@
 
 #include <lua.hpp>
 
-#include <initializer_list>
 #include <optional>
 #include <span>
 #include <string>
@@ -24,8 +23,6 @@ class Args {
   // has a Positional key), so a misspelt key is named before a missing one; then each key in order:
   // missing, wrong type, out of range (nested tables too). `within` names the key of a nested table.
   Args(lua_State* L, int index, std::span<const Key> keys, const char* within = nullptr);
-  // Without a description: only the key names (the bindings not yet converted to key tables).
-  Args(lua_State* L, int index, std::initializer_list<const char*> allowed, bool positional = false);
 
   bool has(const char* key) const;
   // Pushes the value of `key` (nil if absent) and returns its Lua type.
@@ -51,11 +48,6 @@ class Args {
   // The nested table of a Table key, checked; it stays on the stack until the function returns.
   Args table(const char* key) const;
 
-  // Range checks with messages such as "key 'cell' must be > 0 (m), got -1".
-  static double positive(const char* key, double v, const char* unit = "");
-  static double at_least(const char* key, double v, double lo, const char* unit = "");
-  static double in_range(const char* key, double v, double lo, double hi, bool hi_open, const char* unit = "");
-
   // Number of positional entries (the table's raw length).
   lua_Integer length() const;
   // Reads positional entry i: a number, or a point {x, y}.
@@ -66,7 +58,6 @@ class Args {
   int index() const { return index_; }
 
  private:
-  const Key* find(const char* key) const;   // nullptr without a description
   const Key& spec(const char* key) const;   // throws std::logic_error for a key the description lacks
   void reject_unknown_keys(const std::vector<std::string>& known, bool positional) const;
   void check(const Key& k) const;

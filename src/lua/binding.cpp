@@ -1,5 +1,7 @@
 #include "binding.hpp"
 
+#include <sstream>
+
 #include "core/parameter.hpp"
 
 namespace seismpm::lua {
@@ -86,6 +88,12 @@ std::string type_name(lua_State* L, int index) {
     return s;
   }
   return luaL_typename(L, index);
+}
+
+std::string point_text(const Vec<2>& p) {
+  std::ostringstream os;
+  os << "{" << p[0] << ", " << p[1] << "}";
+  return os.str();
 }
 
 int raw_global(lua_State* L, const char* name) {

@@ -129,44 +129,12 @@ T& object_argument(const Args& a, const char* key) {
   return obj;
 }
 
-// --- The registration before key tables (model_binding.cpp, phase_binding.cpp until they move).
-template <int (*F)(lua_State*)>
-void set_function(lua_State* L, int table, const char* key, const char* full_name) {
-  table = lua_absindex(L, table);
-  push_function(L, &guarded<F>, full_name);
-  lua_setfield(L, table, key);
-}
-
-template <class T, int (*ToString)(lua_State*)>
-void new_type(lua_State* L, const char* type) {
-  make_type<T, ToString>(L, type);
-  luaL_getmetatable(L, type);
-  lua_getfield(L, -1, "__index");
-  lua_remove(L, -2);  // leave the methods table
-}
-
-template <class T>
-T& push_object(lua_State* L, const char* type, T value) {
-  void* mem = lua_newuserdatauv(L, sizeof(T), 0);
-  T* obj = new (mem) T(std::move(value));
-  luaL_setmetatable(L, type);
-  return *obj;
-}
-
-template <class T>
-T* test_object(lua_State* L, int index, const char* type) {
-  return static_cast<T*>(luaL_testudata(L, index, type));
-}
-
-template <class T>
-T& check_object(lua_State* L, int index, const char* type, const std::string& what) {
-  if (T* obj = test_object<T>(L, index, type)) return *obj;
-  throw Error(what + " must be a " + type + ", got " + type_name(L, index));
-}
-// ---
 
 // A particle field name at `index` (body:field, probe:get); the error lists the names.
 Field field_argument(lua_State* L, int index);
+
+// "{x, y}" for messages.
+std::string point_text(const Vec<2>& p);
 
 // Pushes the global `name` without running a metamethod of the globals table; returns its type.
 int raw_global(lua_State* L, const char* name);

@@ -100,6 +100,6 @@ const Function kHelp[] = {
 
 std::span<const Function> help_functions() { return kHelp; }
 
-void open_help(lua_State* L, int /*mpm*/) { register_functions(L, kHelp); }
+void open_help(lua_State* L) { register_functions(L, kHelp); }
 
 }  // namespace seismpm::lua

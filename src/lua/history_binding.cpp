@@ -10,7 +10,7 @@
 #include "io/csv_table.hpp"
 #include "io/ground_motion.hpp"
 #include "lua_function.hpp"
-#include "object_types.hpp"
+#include "objects.hpp"
 #include "session.hpp"
 
 namespace seismpm::lua {
@@ -201,6 +201,6 @@ std::shared_ptr<const History> to_history(lua_State* L, int index, const std::st
 
 std::span<const Function> history_functions() { return kHistory; }
 
-void open_history(lua_State* L, int /*mpm*/) { open_type<HistoryObject, history_tostring>(L, kHistory); }
+void open_history(lua_State* L) { open_type<HistoryObject, history_tostring>(L, kHistory); }
 
 }  // namespace seismpm::lua

@@ -7,7 +7,7 @@
 #include "materials/drucker_prager.hpp"
 #include "materials/linear_elastic.hpp"
 #include "materials/mohr_coulomb.hpp"
-#include "object_types.hpp"
+#include "objects.hpp"
 
 namespace seismpm::lua {
 
@@ -134,6 +134,6 @@ const Function kMaterial[] = {
 
 std::span<const Function> material_functions() { return kMaterial; }
 
-void open_material(lua_State* L, int /*mpm*/) { open_type<MaterialObject, material_tostring>(L, kMaterial); }
+void open_material(lua_State* L) { open_type<MaterialObject, material_tostring>(L, kMaterial); }
 
 }  // namespace seismpm::lua

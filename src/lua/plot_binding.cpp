@@ -47,6 +47,6 @@ const Function kPlot[] = {
 
 std::span<const Function> plot_functions() { return kPlot; }
 
-void open_plot(lua_State* L, int /*mpm*/) { register_functions(L, kPlot); }
+void open_plot(lua_State* L) { register_functions(L, kPlot); }
 
 }  // namespace seismpm::lua

@@ -4,7 +4,7 @@
 #include "api_docs.hpp"
 #include "binding.hpp"
 #include "core/particle_fields.hpp"
-#include "object_types.hpp"
+#include "objects.hpp"
 
 namespace seismpm::lua {
 

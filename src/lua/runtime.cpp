@@ -97,8 +97,6 @@ std::string data_path(lua_State* L, const std::string& file) {
 
 std::span<const Function> session_functions() { return kSession; }
 
-void open_library_support(lua_State* L);  // library_binding.cpp
-
 Session& session(lua_State* L) {
   lua_pushstring(L, kSessionKey);
   lua_rawget(L, LUA_REGISTRYINDEX);
@@ -117,20 +115,19 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
 
   lua_newtable(L_);
   lua_setglobal(L_, "mpm");
-  raw_global(L_, "mpm");
-  const int mpm = lua_gettop(L_);
-  open_model(L_, mpm);
+  open_model(L_);  // first: it makes the model type that the next three add methods to
+  open_model_building(L_);
+  open_phases(L_);
+  open_output(L_);
   open_body(L_);
   open_probe(L_);
-  open_material(L_, mpm);
-  open_shape(L_, mpm);
-  open_history(L_, mpm);
-  open_phases(L_);
-  open_plot(L_, mpm);
-  open_help(L_, mpm);
+  open_material(L_);
+  open_shape(L_);
+  open_history(L_);
+  open_plot(L_);
+  open_help(L_);
   open_library_support(L_);
   register_functions(L_, kSession);
-  lua_pop(L_, 1);
 
   // The Lua library: `require "seismpm"` finds lua/seismpm.lua in the first directory that has it.
   std::string path;

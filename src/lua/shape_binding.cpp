@@ -2,7 +2,7 @@
 #include "api_docs.hpp"
 #include "binding.hpp"
 #include "core/error.hpp"
-#include "object_types.hpp"
+#include "objects.hpp"
 
 namespace seismpm::lua {
 
@@ -95,6 +95,6 @@ const Function kShape[] = {
 
 std::span<const Function> shape_functions() { return kShape; }
 
-void open_shape(lua_State* L, int /*mpm*/) { open_type<ShapeObject, shape_tostring>(L, kShape); }
+void open_shape(lua_State* L) { open_type<ShapeObject, shape_tostring>(L, kShape); }
 
 }  // namespace seismpm::lua
