@@ -164,7 +164,11 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
     lua_pushstring(L_, args[i].c_str());
     lua_rawseti(L_, -2, static_cast<lua_Integer>(i + 1));
   }
-  lua_setglobal(L_, "arg");
+  lua_rawgeti(L_, LUA_REGISTRYINDEX, LUA_RIDX_GLOBALS);  // raw: an earlier chunk may have set a metatable on _G
+  lua_pushstring(L_, "arg");
+  lua_pushvalue(L_, -3);
+  lua_rawset(L_, -3);
+  lua_pop(L_, 2);
   std::error_code ec;
   session_.script_dir = std::filesystem::absolute(file, ec).parent_path().string();
   if (luaL_loadfile(L_, file.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {

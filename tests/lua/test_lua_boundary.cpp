@@ -283,3 +283,15 @@ TEST_CASE("the Lua library checks its calls against the same key tables, at the 
     assert(#layers == 2 and layers[2].name == "sand" and layers[1].shape:contains{1, 0.5})  -- base defaults to 0
   )") == "");
 }
+
+TEST_CASE("a script runs after a chunk that made the globals hostile", "[lua][boundary]") {
+  const std::string file = "/tmp/seismpm_test_boundary_args.lua";
+  {
+    std::FILE* out = std::fopen(file.c_str(), "w");
+    std::fputs("assert(rawget(_G, 'arg')[1] == 'word')\n", out);
+    std::fclose(out);
+  }
+  LuaFixture f;
+  REQUIRE(f.error_of("setmetatable(_G, { __newindex = function() error('hostile __newindex', 0) end })") == "");
+  CHECK(f.runtime.run_file(file, {"word"}));  // `arg` set raw, outside any protected call
+}
