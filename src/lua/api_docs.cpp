@@ -85,6 +85,13 @@ std::vector<std::array<std::string, 4>> rows_of(const Function& f) {
   return rows;
 }
 
+// A Markdown table cell: its | escaped.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
 // How a script calls it: "mpm.model", or "m:run" for the method run of a model.
 std::string call_of(const Function& f) {
   if (f.call) return f.call;
@@ -175,7 +182,7 @@ std::string api_markdown() {
       if (!rows.empty()) {
         os << "\n| key | value | default | meaning |\n|---|---|---|---|\n";
         for (const auto& r : rows)
-          os << "| `" << r[0] << "` | " << r[1] << " | " << (r[2].empty() ? "" : r[2]) << " | " << r[3] << " |\n";
+          os << "| `" << r[0] << "` | " << cell(r[1]) << " | " << cell(r[2]) << " | " << cell(r[3]) << " |\n";
       }
       os << "\n```lua\n" << f.example << "\n```\n";
     }
