@@ -3,46 +3,18 @@
 
 local geometry = {}
 
-local function check_table(fname, t)
-  if type(t) ~= "table" then
-    error(fname .. ": expects a table of named arguments { key = value, ... }, got " .. type(t), 3)
-  end
-end
-
-local function check_keys(fname, t, allowed)
-  local set = {}
-  for _, k in ipairs(allowed) do set[k] = true end
-  for k in pairs(t) do
-    if type(k) ~= "number" and not set[k] then
-      error(fname .. ": unknown key '" .. tostring(k) .. "' (allowed: " .. table.concat(allowed, ", ") .. ")", 3)
-    end
-  end
-end
-
-local function number(fname, t, key, default)
-  local v = t[key]
-  if v == nil then
-    if default == nil then error(fname .. ": missing key '" .. key .. "'", 3) end
-    return default
-  end
-  if type(v) ~= "number" then error(fname .. ": key '" .. key .. "' must be a number, got " .. type(v), 3) end
-  return v
-end
+-- Checks a call's table of named arguments against the function's key table in the bindings
+-- (src/lua/library_binding.cpp) as every binding does (unknown, missing, wrong type, out of range) and
+-- returns the named values with their defaults.
+local check_args = mpm._check_args
 
 -- A slope in a box: level crest ground from `left` to crest.x at height crest.y, a face falling to
 -- the right at `angle` degrees down to `toe_level`, level toe ground to `right`; all above `base`.
 function geometry.slope(t)
   local f = "mpm.geometry.slope"
-  check_table(f, t)
-  check_keys(f, t, { "left", "right", "base", "crest", "toe_level", "angle" })
-  local left, right = number(f, t, "left"), number(f, t, "right")
-  local base = number(f, t, "base", 0)
-  local toe, angle = number(f, t, "toe_level"), number(f, t, "angle")
-  if type(t.crest) ~= "table" or type(t.crest[1]) ~= "number" or type(t.crest[2]) ~= "number" then
-    error(f .. ": key 'crest' must be a point {x, y} (m)", 2)
-  end
-  local cx, cy = t.crest[1], t.crest[2]
-  if not (angle > 0 and angle < 90) then error(f .. ": key 'angle' must be in (0, 90) degrees, got " .. angle, 2) end
+  local a = check_args(f, t)
+  local left, right, base, toe, angle = a.left, a.right, a.base, a.toe_level, a.angle
+  local cx, cy = a.crest[1], a.crest[2]
   if not (right > left) then error(f .. ": key 'right' must exceed 'left'", 2) end
   if not (toe > base and cy > toe) then
     error(f .. ": need base < toe_level < crest height, got " .. base .. ", " .. toe .. ", " .. cy, 2)
@@ -57,10 +29,8 @@ end
 -- Horizontal layers listed from the bottom up by their top elevation.
 function geometry.layers(t)
   local f = "mpm.geometry.layers"
-  check_table(f, t)
-  check_keys(f, t, { "left", "right", "base" })
-  local left, right = number(f, t, "left"), number(f, t, "right")
-  local bottom = number(f, t, "base", 0)
+  local a = check_args(f, t)
+  local left, right, bottom = a.left, a.right, a.base
   if #t == 0 then error(f .. ": give at least one layer {top = y, name = ...}", 2) end
   local out = {}
   for i, layer in ipairs(t) do

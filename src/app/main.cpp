@@ -115,8 +115,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   if (version) {
-    std::printf("seismpm %s (Lua %s.%s)\n", seismpm::lua::kVersion, LUA_VERSION_MAJOR,
-                LUA_VERSION_MINOR);
+    std::printf("seismpm %s (Lua %s)\n", seismpm::lua::kVersion, seismpm::lua::Runtime::lua_version());
     return 0;
   }
   if (api_doc) {
@@ -173,7 +172,7 @@ int main(int argc, char** argv) {
   }
 
   seismpm::lua::Runtime runtime(session, library_dirs(argv[0]));
-  seismpm::install_interrupt_handler(runtime, session);
+  seismpm::install_interrupt_handler(runtime);
   bool ok = true;
   for (std::size_t i = 0; ok && i < chunks.size(); ++i) ok = runtime.run_string(chunks[i], "=(command line)");
   if (ok && !script.empty()) {

@@ -1,19 +1,25 @@
 // What every binding file shares: C++ exceptions turned into Lua errors at the boundary, userdata
-// with metatables, and `Args`, the validator of a function's table of named arguments.
+// with metatables, self(), and the registration of a file's table of functions (arg_spec.hpp).
 // This directory is the only place that knows Lua's C API.
+//
+// The boundary rule: a Lua error is a longjmp, which would skip the destructors of the C++ objects of
+// every frame it crosses. So no code here calls a Lua function that can raise (luaL_check*, luaL_len,
+// lua_getfield on a table a script made, lua_call) while a C++ object with a destructor is alive:
+// arguments are read raw (args.hpp), Lua code is called with lua_pcall, and a failure throws a C++
+// exception that `guarded` turns into a Lua error after the C++ frame is gone.
 #pragma once
 
 #include <lua.hpp>
 
 #include <memory>
 #include <new>
-#include <optional>
-#include <initializer_list>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
-#include <vector>
 
+#include "arg_spec.hpp"
+#include "args.hpp"
 #include "core/particle_fields.hpp"
 #include "core/types.hpp"
 
@@ -25,6 +31,10 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The message of a C++ exception as the script sees it: a kernel's ParameterError ("'friction' must
+// be ...") names a key of the call.
+std::string script_message(const std::exception& e);
+
 // Calls F; a C++ exception becomes a Lua error prefixed with the caller's position and the
 // function's name (upvalue 1). No C++ object is alive when lua_error unwinds.
 template <int (*F)(lua_State*)>
@@ -32,115 +42,101 @@ int guarded(lua_State* L) {
   try {
     return F(L);
   } catch (const std::exception& e) {
+    const std::string message = script_message(e);  // destroyed at the end of this block
     luaL_where(L, 1);
     const char* name = lua_tostring(L, lua_upvalueindex(1));
-    lua_pushfstring(L, "%s: %s", name ? name : "seismpm", e.what());
+    lua_pushfstring(L, "%s: %s", name ? name : "seismpm", message.c_str());
     lua_concat(L, 2);
+  } catch (...) {  // nothing may unwind through Lua's C frames
+    lua_pushstring(L, "seismpm: an unknown C++ exception");
   }
   return lua_error(L);
 }
 
-// Pushes F as a closure named `name` (for messages and help) and records it for help().
+// Pushes F as a closure named `name` (for messages and help) and records the name for help().
 void push_function(lua_State* L, lua_CFunction f, const char* name);
 
-template <int (*F)(lua_State*)>
-void set_function(lua_State* L, int table, const char* key, const char* full_name) {
-  table = lua_absindex(L, table);
-  push_function(L, &guarded<F>, full_name);
-  lua_setfield(L, table, key);
-}
+// Registers each function of a table where its name says: "model:run" among the methods of type
+// "model" (made by open_type), "mpm.material.linear_elastic" in the mpm.material table (created when
+// missing), "help" as a global.
+void register_functions(lua_State* L, std::span<const Function> functions);
 
-// Userdata holding a T; the metatable `type` must have been made with new_type<T>.
+// Lua's type name of each object behind a userdata; specialised next to the objects.
+template <class T>
+struct LuaType;
+
 template <class T>
 int destroy(lua_State* L) {
   static_cast<T*>(lua_touserdata(L, 1))->~T();
   return 0;
 }
 
-// Creates the metatable for a type: __name, __gc, __tostring (a one-line summary) and
-// __index = a methods table, which is left on the stack for the caller to fill.
+// The metatable of T: __name, __gc, __tostring (a one-line summary), __index (its methods, empty).
 template <class T, int (*ToString)(lua_State*)>
-void new_type(lua_State* L, const char* type) {
+void make_type(lua_State* L, const char* type) {
   luaL_newmetatable(L, type);
   lua_pushcfunction(L, &destroy<T>);
   lua_setfield(L, -2, "__gc");
   push_function(L, &guarded<ToString>, (std::string(type) + ":__tostring").c_str());
   lua_setfield(L, -2, "__tostring");
   lua_newtable(L);
-  lua_pushvalue(L, -1);
-  lua_setfield(L, -3, "__index");
-  lua_remove(L, -2);  // leave the methods table
+  lua_setfield(L, -2, "__index");
+  lua_pop(L, 1);
+}
+
+// Creates the metatable of T and registers the functions of its binding file.
+template <class T, int (*ToString)(lua_State*)>
+void open_type(lua_State* L, std::span<const Function> functions) {
+  make_type<T, ToString>(L, LuaType<T>::name);
+  register_functions(L, functions);
 }
 
 template <class T>
-T& push_object(lua_State* L, const char* type, T value) {
+T& push_object(lua_State* L, T value) {
   void* mem = lua_newuserdatauv(L, sizeof(T), 0);
   T* obj = new (mem) T(std::move(value));
-  luaL_setmetatable(L, type);
+  luaL_setmetatable(L, LuaType<T>::name);
   return *obj;
 }
 
 template <class T>
-T* test_object(lua_State* L, int index, const char* type) {
-  return static_cast<T*>(luaL_testudata(L, index, type));
+T* test_object(lua_State* L, int index) {
+  return static_cast<T*>(luaL_testudata(L, index, LuaType<T>::name));  // compares metatables: raw
 }
 
 // Lua's name for the type of the value at `index` ("number", "table", "model", ...).
 std::string type_name(lua_State* L, int index);
 
 template <class T>
-T& check_object(lua_State* L, int index, const char* type, const std::string& what) {
-  if (T* obj = test_object<T>(L, index, type)) return *obj;
-  throw Error(what + " must be a " + type + ", got " + type_name(L, index));
+T& check_object(lua_State* L, int index, const std::string& what) {
+  if (T* obj = test_object<T>(L, index)) return *obj;
+  throw Error(what + " must be a " + LuaType<T>::name + ", got " + type_name(L, index));
 }
 
-// The table of named arguments at `index`. The constructor rejects any key not in `allowed`
-// (positional entries 1..n only when `positional`), so a misspelt key is named before a missing
-// one. Messages name the key and the allowed range.
-class Args {
- public:
-  Args(lua_State* L, int index, std::initializer_list<const char*> allowed, bool positional = false);
+// The object a method is called on (m:run: m).
+template <class T>
+T& self(lua_State* L) {
+  return check_object<T>(L, 1, "self");
+}
 
-  bool has(const char* key);
-  // Pushes the value of `key` (nil if absent) and returns its Lua type.
-  int push(const char* key);
+// The object under `key` of a call's arguments (an Object key of its table).
+template <class T>
+T& object_argument(const Args& a, const char* key) {
+  lua_State* L = a.state();
+  a.push(key);
+  T& obj = check_object<T>(L, -1, std::string("key '") + key + "'");
+  lua_pop(L, 1);  // the argument table keeps the userdata alive
+  return obj;
+}
 
-  double number(const char* key);                 // required
-  double number(const char* key, double fallback);
-  std::optional<double> optional_number(const char* key);
-  int integer(const char* key, int fallback);
-  std::string string(const char* key);
-  std::string string(const char* key, const std::string& fallback);
-  std::string choice(const char* key, const std::vector<std::string>& allowed, const std::string& fallback);
-  bool boolean(const char* key, bool fallback);
-  Vec<2> point(const char* key);                    // {x, y}
-  std::vector<Vec<2>> points(const char* key);      // {{x, y}, ...}
-  // A non-empty list of strings {"a", "b"}; nullopt when the key is absent.
-  std::optional<std::vector<std::string>> names(const char* key);
-
-  // Range checks with messages such as "key 'cell' must be > 0 (m), got -1".
-  static double positive(const char* key, double v, const char* unit = "");
-  static double at_least(const char* key, double v, double lo, const char* unit = "");
-  static double in_range(const char* key, double v, double lo, double hi, bool hi_open, const char* unit = "");
-
-  // Number of positional entries (the table's length).
-  lua_Integer length() const;
-  // Reads positional entry i: a number, or a point {x, y}.
-  double number_at(lua_Integer i);
-  Vec<2> point_at(lua_Integer i, const std::string& what);
-
-  lua_State* state() const { return L_; }
-  int index() const { return index_; }
-
- private:
-  lua_State* L_;
-  int index_;
-};
 
 // A particle field name at `index` (body:field, probe:get); the error lists the names.
 Field field_argument(lua_State* L, int index);
 
-// Reads {x, y} at the top of the stack; `what` names it in messages.
-Vec<2> to_point(lua_State* L, int index, const std::string& what);
+// "{x, y}" for messages.
+std::string point_text(const Vec<2>& p);
+
+// Pushes the global `name` without running a metamethod of the globals table; returns its type.
+int raw_global(lua_State* L, const char* name);
 
 }  // namespace seismpm::lua

@@ -3,11 +3,13 @@
 #include <cmath>
 #include <sstream>
 
+#include "api_docs.hpp"
 #include "binding.hpp"
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv_table.hpp"
 #include "io/ground_motion.hpp"
+#include "lua_function.hpp"
 #include "objects.hpp"
 #include "session.hpp"
 
@@ -15,64 +17,85 @@ namespace seismpm::lua {
 
 namespace {
 
-HistoryObject& self(lua_State* L) { return check_object<HistoryObject>(L, 1, kHistoryType, "self"); }
+const Key kTableKeys[] = {arg::positional("{t, v}, {t, v}, ...", "the points: times (s) must increase")};
+const Key kCsvKeys[] = {
+    arg::string("file", "the CSV file; a relative one not found from the current directory is looked for next to "
+                        "the script").required(),
+    arg::string("time", "the column of times (s)").def_text("t"),
+    arg::string("value", "the column of values").required(),
+    arg::number("scale", "", "factor on the values").def(1),
+    arg::number("shift", "s", "added to the times").def(0),
+};
+const Key kAt2Keys[] = {
+    arg::string("file", "the record: PEER NGA .AT2 (in g) or two columns time, acceleration").required(),
+    arg::choice("integrate", "velocity|none", "velocity",
+                "velocity (trapezoidal rule) or none (the acceleration, m/s2)"),
+    arg::choice("baseline", "none|linear|quadratic", "none",
+                "linear removes the drift so velocity and displacement end at zero; quadratic first removes a "
+                "least-squares quadratic trend of the velocity"),
+    arg::number("scale", "", "factor on the acceleration").def(1),
+    arg::choice("units", "g|m/s2|gal", "g", "units of a columns file (AT2 files are in g)"),
+    arg::choice("format", "at2|columns", "", "the file's format").shown("from the extension (.AT2: at2)"),
+};
 
 int history_tostring(lua_State* L) {
-  lua_pushstring(L, ("history: " + self(L).history->describe()).c_str());
+  lua_pushstring(L, ("history: " + self<HistoryObject>(L).history->describe()).c_str());
   return 1;
 }
 
 int history_at(lua_State* L) {
-  const auto& h = self(L);
+  const auto& h = self<HistoryObject>(L);
   if (!lua_isnumber(L, 2)) throw Error("expects a time t (s), got " + type_name(L, 2));
   lua_pushnumber(L, h.history->at(lua_tonumber(L, 2)));
   return 1;
 }
 
 // mpm.history.table{{t, v}, {t, v}, ...}
-int table(lua_State* L) {
-  Args a(L, 1, {}, true);
+int history_table(lua_State* L) {
+  const Args a(L, 1, kTableKeys);
   std::vector<double> t, v;
   for (lua_Integer i = 1; i <= a.length(); ++i) {
     const Vec<2> p = a.point_at(i, "point " + std::to_string(i) + " {t, value}");
     t.push_back(p[0]);
     v.push_back(p[1]);
   }
-  push_object(L, kHistoryType, HistoryObject{std::make_shared<TableHistory>(std::move(t), std::move(v), "table")});
+  auto history = std::make_shared<TableHistory>(std::move(t), std::move(v), "table");
+  push_object(L, HistoryObject{std::move(history)});
   return 1;
 }
 
 // mpm.history.csv{file =, time = "t", value = "v", scale = 1, shift = 0}
-int csv(lua_State* L) {
-  Args a(L, 1, {"file", "time", "value", "scale", "shift"});
+int history_csv(lua_State* L) {
+  const Args a(L, 1, kCsvKeys);
   const std::string file = data_path(L, a.string("file"));
-  const std::string time = a.string("time", "t");
-  const std::string value = a.string("value");
-  const double scale = a.number("scale", 1.0);
-  const double shift = a.number("shift", 0.0);
-  auto c = read_csv_columns(file, {time, value});
+  const double scale = a.number("scale"), shift = a.number("shift");
+  auto c = read_csv_columns(file, {a.string("time"), a.string("value")});
   for (std::size_t k = 1; k < c.columns[0].size(); ++k)
     if (!(c.columns[0][k] > c.columns[0][k - 1]))
       throw Error(file + ":" + std::to_string(c.lines[k]) + ": times must increase (" + std::to_string(c.columns[0][k]) +
                   " after " + std::to_string(c.columns[0][k - 1]) + ")");
   for (auto& t : c.columns[0]) t += shift;
   for (auto& v : c.columns[1]) v *= scale;
-  push_object(L, kHistoryType,
-              HistoryObject{std::make_shared<TableHistory>(std::move(c.columns[0]), std::move(c.columns[1]), file)});
+  auto history = std::make_shared<TableHistory>(std::move(c.columns[0]), std::move(c.columns[1]), file);
+  push_object(L, HistoryObject{std::move(history)});
   return 1;
 }
 
 // The table behind a history, for the calls that need one.
 const TableHistory& table_of(lua_State* L, const char* what) {
-  const auto* t = dynamic_cast<const TableHistory*>(self(L).history.get());
+  const auto* t = dynamic_cast<const TableHistory*>(self<HistoryObject>(L).history.get());
   if (!t) throw Error(std::string(what) + " needs a tabulated history (table, csv or record), not a function or constant");
   return *t;
 }
 
+double peak(const std::vector<double>& x) {
+  double p = 0.0;
+  for (double v : x) p = std::max(p, std::abs(v));
+  return p;
+}
+
 int history_peak(lua_State* L) {
-  double peak = 0.0;
-  for (double v : table_of(L, "peak").values()) peak = std::max(peak, std::abs(v));
-  lua_pushnumber(L, peak);
+  lua_pushnumber(L, peak(table_of(L, "peak").values()));
   return 1;
 }
 
@@ -94,72 +117,75 @@ int history_write_csv(lua_State* L) {
   return 0;
 }
 
+// The record's velocity (or acceleration), and what tostring(h) reports about it.
+std::vector<double> record_values(const AccelerationRecord& record, bool velocity, Baseline baseline, std::ostringstream& about) {
+  if (!velocity) return record.a;
+  const auto raw = integrate_record(record, Baseline::None);
+  const auto cor = integrate_record(record, baseline);
+  about << "; velocity: peak " << peak(raw.v) << " m/s, end " << raw.v.back() << " m/s, end displacement "
+        << raw.d.back() << " m";
+  if (baseline != Baseline::None)
+    about << "; after the " << (baseline == Baseline::Linear ? "linear" : "quadratic") << " baseline: peak "
+          << peak(cor.v) << " m/s, end " << cor.v.back() << " m/s, end displacement " << cor.d.back() << " m";
+  return cor.v;
+}
+
 // mpm.history.at2{ file, integrate = "velocity", baseline = "none", scale = 1, units = "g", format }
-int at2(lua_State* L) {
-  Args a(L, 1, {"file", "integrate", "baseline", "scale", "units", "format"});
+int history_at2(lua_State* L) {
+  const Args a(L, 1, kAt2Keys);
   const std::string file = data_path(L, a.string("file"));
-  const std::string integrate = a.choice("integrate", {"velocity", "none"}, "velocity");
-  const Baseline baseline = parse_baseline(a.choice("baseline", {"none", "linear", "quadratic"}, "none"));
-  const double scale = a.number("scale", 1.0);
   const bool is_at2 = file.size() > 4 && (file.substr(file.size() - 4) == ".AT2" || file.substr(file.size() - 4) == ".at2");
-  const std::string format = a.choice("format", {"at2", "columns"}, is_at2 ? "at2" : "columns");
-  const std::string units = a.choice("units", {"g", "m/s2", "gal"}, "g");
+  const std::string format = a.choice("format", is_at2 ? "at2" : "columns");
+  const std::string units = a.choice("units");
   if (format == "at2" && units != "g") throw Error("key 'units': AT2 files are in g");
   const double to_si = units == "g" ? kStandardGravity : units == "gal" ? 0.01 : 1.0;
   AccelerationRecord record = format == "at2" ? read_at2(file) : read_acceleration_columns(file, to_si);
+  const double scale = a.number("scale");
   for (double& v : record.a) v *= scale;
   std::ostringstream about;
   about.precision(4);
-  double pga = 0.0;
-  for (double v : record.a) pga = std::max(pga, std::abs(v));
-  about << file << " (PGA " << pga / kStandardGravity << " g";
-  std::vector<double> values = record.a;
-  if (integrate == "velocity") {
-    const auto raw = integrate_record(record, Baseline::None);
-    const auto cor = integrate_record(record, baseline);
-    auto peak = [](const std::vector<double>& x) {
-      double p = 0.0;
-      for (double v : x) p = std::max(p, std::abs(v));
-      return p;
-    };
-    about << "; velocity: peak " << peak(raw.v) << " m/s, end " << raw.v.back() << " m/s, end displacement "
-          << raw.d.back() << " m";
-    if (baseline != Baseline::None)
-      about << "; after the " << (baseline == Baseline::Linear ? "linear" : "quadratic") << " baseline: peak "
-            << peak(cor.v) << " m/s, end " << cor.v.back() << " m/s, end displacement " << cor.d.back() << " m";
-    values = cor.v;
-  }
+  about << file << " (PGA " << peak(record.a) / kStandardGravity << " g";
+  auto values = record_values(record, a.choice("integrate") == "velocity", parse_baseline(a.choice("baseline")), about);
   about << ")";
-  push_object(L, kHistoryType,
-              HistoryObject{std::make_shared<TableHistory>(std::move(record.t), std::move(values), about.str())});
+  auto history = std::make_shared<TableHistory>(std::move(record.t), std::move(values), about.str());
+  push_object(L, HistoryObject{std::move(history)});
   return 1;
 }
 
 // mpm.history.fn(function(t) return ... end): evaluated in Lua when asked, never per particle.
-int fn(lua_State* L) {
+int history_fn(lua_State* L) {
   if (!lua_isfunction(L, 1)) throw Error("expects a function of time, function(t) return value end");
-  lua_pushvalue(L, 1);
-  const int ref = luaL_ref(L, LUA_REGISTRYINDEX);
-  lua_State* main = L;
-  auto f = [main, ref](double t) {
-    lua_rawgeti(main, LUA_REGISTRYINDEX, ref);
-    lua_pushnumber(main, t);
-    if (lua_pcall(main, 1, 1, 0) != LUA_OK) {
-      std::string msg = lua_tostring(main, -1) ? lua_tostring(main, -1) : "error";
-      lua_pop(main, 1);
-      throw Error("history function failed at t = " + std::to_string(t) + ": " + msg);
-    }
-    if (!lua_isnumber(main, -1)) {
-      lua_pop(main, 1);
-      throw Error("history function must return a number (at t = " + std::to_string(t) + ")");
-    }
-    const double v = lua_tonumber(main, -1);
-    lua_pop(main, 1);
-    return v;
-  };
-  push_object(L, kHistoryType, HistoryObject{std::make_shared<FunctionHistory>(f, "Lua function")});
+  auto function = std::make_shared<const LuaFunction>(L, 1);
+  auto history = std::make_shared<FunctionHistory>([function](double t) { return (*function)(t); }, "Lua function");
+  push_object(L, HistoryObject{std::move(history)});
   return 1;
 }
+
+const Function kHistory[] = {
+    {"mpm.history.table", &guarded<history_table>, nullptr, kTableKeys,
+     "A piecewise-linear history; zero before the first and after the last point.",
+     "local vx = mpm.history.table{ {0, 0}, {0.1, 2}, {5, 2} }"},
+    {"mpm.history.csv", &guarded<history_csv>, nullptr, kCsvKeys,
+     "A history from two named columns of a CSV file with a header line; '#' lines are skipped. Errors name the "
+     "file and line.",
+     "local vx = mpm.history.csv{ file = \"data/table_velocity.csv\", time = \"t\", value = \"vx\" }"},
+    {"mpm.history.fn", &guarded<history_fn>, "mpm.history.fn(function(t) return value end)", {},
+     "A history computed by a Lua function of time (s), called when the history is read (protected: an error, a "
+     "yield or a value that is not a number stops the call with an error naming t).",
+     "local vx = mpm.history.fn(function(t) return 0.1 * math.sin(2 * math.pi * 3 * t) end)"},
+    {"mpm.history.at2", &guarded<history_at2>, nullptr, kAt2Keys,
+     "A ground-motion record: PEER NGA .AT2 (acceleration in g) or a two-column time, acceleration file (comma or "
+     "white space, '#' comments). tostring(h) reports the peak and end values before and after the baseline "
+     "correction. Errors name the file and line.",
+     "local table = mpm.history.at2{ file = \"data/TCU068-E.AT2\", baseline = \"linear\", scale = 0.5 }"},
+    {"history:at", &guarded<history_at>, "h:at(t)", {}, "The history's value at time t (s).", "print(vx:at(0.5))"},
+    {"history:peak", &guarded<history_peak>, "h:peak()", {}, "The largest |value| of a tabulated history.",
+     "print(vx:peak())"},
+    {"history:duration", &guarded<history_duration>, "h:duration()", {}, "Time from the first to the last point (s).",
+     "print(vx:duration())"},
+    {"history:write_csv", &guarded<history_write_csv>, "h:write_csv(file)", {},
+     "Writes the points as t,value (atomically).", "vx:write_csv(\"out/table_velocity.csv\")"},
+};
 
 }  // namespace
 
@@ -169,23 +195,12 @@ std::shared_ptr<const History> to_history(lua_State* L, int index, const std::st
     if (!std::isfinite(v)) throw Error(what + " must be finite");
     return std::make_shared<ConstantHistory>(v);
   }
-  if (auto* h = test_object<HistoryObject>(L, index, kHistoryType)) return h->history;
+  if (auto* h = test_object<HistoryObject>(L, index)) return h->history;
   throw Error(what + " must be a number or a history (mpm.history.*), got " + type_name(L, index));
 }
 
-void open_history(lua_State* L, int mpm) {
-  new_type<HistoryObject, history_tostring>(L, kHistoryType);
-  set_function<history_at>(L, -1, "at", "history:at");
-  set_function<history_peak>(L, -1, "peak", "history:peak");
-  set_function<history_duration>(L, -1, "duration", "history:duration");
-  set_function<history_write_csv>(L, -1, "write_csv", "history:write_csv");
-  lua_pop(L, 1);
-  lua_newtable(L);
-  set_function<table>(L, -1, "table", "mpm.history.table");
-  set_function<csv>(L, -1, "csv", "mpm.history.csv");
-  set_function<fn>(L, -1, "fn", "mpm.history.fn");
-  set_function<at2>(L, -1, "at2", "mpm.history.at2");
-  lua_setfield(L, mpm, "history");
-}
+std::span<const Function> history_functions() { return kHistory; }
+
+void open_history(lua_State* L) { open_type<HistoryObject, history_tostring>(L, kHistory); }
 
 }  // namespace seismpm::lua

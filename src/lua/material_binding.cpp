@@ -1,9 +1,9 @@
-// mpm.material.*: constitutive models. Soil models plug in here the same way.
-#include <cmath>
+// mpm.material.*: constitutive models. Soil models plug in here the same way. The materials check
+// their own parameters (ranges and how they depend on each other); the binding reads and forwards.
 #include <sstream>
 
+#include "api_docs.hpp"
 #include "binding.hpp"
-#include "core/error.hpp"
 #include "materials/drucker_prager.hpp"
 #include "materials/linear_elastic.hpp"
 #include "materials/mohr_coulomb.hpp"
@@ -13,93 +13,127 @@ namespace seismpm::lua {
 
 namespace {
 
+const Key kDensity = arg::number("density", "kg/m3", "mass density").checked_by_kernel(kDensityRange).required();
+const Key kYoung = arg::number("young", "Pa", "Young's modulus").checked_by_kernel(kYoungRange).required();
+const Key kPoisson = arg::number("poisson", "", "Poisson's ratio").checked_by_kernel(kPoissonRange).required();
+const Key kCohesion = arg::number("cohesion", "Pa", "cohesion c").checked_by_kernel(kCohesionRange).def(0);
+const Key kFriction =
+    arg::number("friction", "degrees", "friction angle phi (not both c and phi zero)").checked_by_kernel(kFrictionRange).required();
+const Key kDilation =
+    arg::number("dilation", "degrees", "dilation angle psi (0: no volume change in plastic flow)").in_text("in [0, friction]").def(0);
+
+const Key kLinearElasticKeys[] = {kDensity, kYoung, kPoisson};
+const Key kSofteningKeys[] = {
+    arg::number("cohesion", "Pa", "residual cohesion").in_text("in [0, cohesion]").shown("cohesion (not softened)"),
+    arg::number("friction", "degrees", "residual friction angle").in_text("in [0, friction]").shown("friction (not softened)"),
+    arg::number("strain", "", "accumulated plastic shear strain at which the residual values are reached").in(above(0)).required(),
+};
+const Key kMohrCoulombKeys[] = {
+    kDensity, kYoung, kPoisson, kCohesion, kFriction, kDilation,
+    arg::number("tension", "Pa", "tensile strength (0: none)").in_text("in [0, c cot(phi)]").def(0),
+    arg::table("softening", kSofteningKeys, "linear softening of c and phi with accumulated plastic shear strain"),
+};
+const Key kDruckerPragerKeys[] = {
+    kDensity, kYoung, kPoisson, kCohesion, kFriction, kDilation,
+    arg::number("tension", "Pa", "limit of the mean stress (0: no tension)").in_text("in [0, the cone's apex]").def(0),
+    arg::choice("fit", "plane_strain|outer|inner", "plane_strain",
+                "how the cone fits Mohr-Coulomb: the same plane-strain limit load, or through its compression "
+                "(outer) or extension (inner) corners"),
+};
+
 int material_tostring(lua_State* L) {
-  lua_pushstring(L, check_object<MaterialObject>(L, 1, kMaterialType, "self").summary.c_str());
+  lua_pushstring(L, self<MaterialObject>(L).summary.c_str());
   return 1;
 }
 
 int material_kind(lua_State* L) {
-  lua_pushstring(L, std::string(check_object<MaterialObject>(L, 1, kMaterialType, "self").material->kind()).c_str());
+  lua_pushstring(L, std::string(self<MaterialObject>(L).material->kind()).c_str());
   return 1;
+}
+
+template <class P>
+void read_elastic(const Args& a, P& p) {
+  p.density = a.number("density");
+  p.young = a.number("young");
+  p.poisson = a.number("poisson");
+}
+
+void read_strength(const Args& a, StrengthParameters& s) {
+  s.cohesion = a.number("cohesion");
+  s.friction = a.number("friction");
+  s.dilation = a.number("dilation");
+  s.tension = a.number("tension");
 }
 
 int linear_elastic(lua_State* L) {
-  Args a(L, 1, {"density", "young", "poisson"});
-  const double density = Args::positive("density", a.number("density"), "kg/m^3");
-  const double young = Args::positive("young", a.number("young"), "Pa");
-  const double poisson = Args::in_range("poisson", a.number("poisson"), 0.0, 0.5, true);
+  const Args a(L, 1, kLinearElasticKeys);
+  const double density = a.number("density"), young = a.number("young"), poisson = a.number("poisson");
+  auto material = std::make_shared<LinearElastic>(density, young, poisson);
   std::ostringstream os;
   os << "linear_elastic: density " << density << " kg/m3, E " << young << " Pa, nu " << poisson;
-  push_object(L, kMaterialType, MaterialObject{std::make_shared<LinearElastic>(density, young, poisson), os.str()});
+  push_object(L, MaterialObject{std::move(material), os.str()});
   return 1;
 }
 
-// Reads and range-checks the strength keys shared by the soil models.
-template <class P>
-void read_strength(Args& a, P& p) {
-  p.density = Args::positive("density", a.number("density"), "kg/m^3");
-  p.young = Args::positive("young", a.number("young"), "Pa");
-  p.poisson = Args::in_range("poisson", a.number("poisson"), 0.0, 0.5, true);
-  p.cohesion = Args::at_least("cohesion", a.number("cohesion", 0.0), 0.0, "Pa");
-  p.friction = Args::in_range("friction", a.number("friction"), 0.0, 90.0, true, "degrees");
-  p.dilation = Args::in_range("dilation", a.number("dilation", 0.0), 0.0, p.friction, false, "degrees, at most friction");
-  p.tension = Args::at_least("tension", a.number("tension", 0.0), 0.0, "Pa");
-  if (p.friction == 0.0 && p.cohesion == 0.0) throw Error("keys 'cohesion' and 'friction' cannot both be zero");
-}
-
 int mohr_coulomb(lua_State* L) {
-  Args a(L, 1, {"density", "young", "poisson", "cohesion", "friction", "dilation", "tension", "softening"});
+  const Args a(L, 1, kMohrCoulombKeys);
   MohrCoulombParameters p;
+  read_elastic(a, p);
   read_strength(a, p);
-  if (p.friction > 0.0) {
-    const double apex = p.cohesion / std::tan(p.friction * 3.14159265358979323846 / 180.0);
-    if (p.tension > apex * (1 + 1e-12))
-      throw Error("key 'tension' must be in [0, c cot(phi) = " + std::to_string(apex) + "] (Pa), got " +
-                  std::to_string(p.tension));
-  }
-  if (a.push("softening") != LUA_TNIL) {
-    Args soft(L, -1, {"cohesion", "friction", "strain"});
+  if (a.has("softening")) {
+    const Args soft = a.table("softening");
     p.softening = true;
-    p.residual_cohesion = Args::in_range("softening.cohesion", soft.number("cohesion", p.cohesion), 0.0, p.cohesion, false, "Pa");
-    p.residual_friction =
-        Args::in_range("softening.friction", soft.number("friction", p.friction), 0.0, p.friction, false, "degrees");
-    p.softening_strain = Args::positive("softening.strain", soft.number("strain"));
+    p.residual_cohesion = soft.number("cohesion", p.cohesion);
+    p.residual_friction = soft.number("friction", p.friction);
+    p.softening_strain = soft.number("strain");
   }
-  lua_pop(L, 1);
+  auto material = std::make_shared<MohrCoulomb>(p);
   std::ostringstream os;
   os << "mohr_coulomb: density " << p.density << " kg/m3, E " << p.young << " Pa, nu " << p.poisson << ", c "
      << p.cohesion << " Pa, phi " << p.friction << ", psi " << p.dilation << ", tension " << p.tension << " Pa";
   if (p.softening)
     os << ", softening to c " << p.residual_cohesion << " Pa, phi " << p.residual_friction << " at plastic strain "
        << p.softening_strain;
-  push_object(L, kMaterialType, MaterialObject{std::make_shared<MohrCoulomb>(p), os.str()});
+  push_object(L, MaterialObject{std::move(material), os.str()});
   return 1;
 }
 
 int drucker_prager(lua_State* L) {
-  Args a(L, 1, {"density", "young", "poisson", "cohesion", "friction", "dilation", "tension", "fit"});
+  const Args a(L, 1, kDruckerPragerKeys);
   DruckerPragerParameters p;
+  read_elastic(a, p);
   read_strength(a, p);
-  const std::string fit = a.choice("fit", {"plane_strain", "outer", "inner"}, "plane_strain");
+  const std::string fit = a.choice("fit");
   p.fit = parse_fit(fit);
+  auto material = std::make_shared<DruckerPrager>(p);
   std::ostringstream os;
   os << "drucker_prager (" << fit << " fit): density " << p.density << " kg/m3, E " << p.young << " Pa, nu "
      << p.poisson << ", c " << p.cohesion << " Pa, phi " << p.friction << ", psi " << p.dilation;
-  push_object(L, kMaterialType, MaterialObject{std::make_shared<DruckerPrager>(p), os.str()});
+  push_object(L, MaterialObject{std::move(material), os.str()});
   return 1;
 }
 
+const Function kMaterial[] = {
+    {"mpm.material.linear_elastic", &guarded<linear_elastic>, nullptr, kLinearElasticKeys,
+     "Isotropic linear elasticity (plane strain keeps sigma_zz).",
+     "local rock = mpm.material.linear_elastic{ density = 2550, young = 5e8, poisson = 0.19 }"},
+    {"mpm.material.mohr_coulomb", &guarded<mohr_coulomb>, nullptr, kMohrCoulombKeys,
+     "Elastic-perfectly plastic Mohr-Coulomb, non-associated, with a tension cut-off. softening = { cohesion =, "
+     "friction =, strain = } softens c and phi linearly to these residual values at that accumulated plastic shear "
+     "strain. Particle fields plastic_strain and yield show the state.",
+     "local soil = mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, cohesion = 780, "
+     "friction = 23, dilation = 0, tension = 0 }"},
+    {"mpm.material.drucker_prager", &guarded<drucker_prager>, nullptr, kDruckerPragerKeys,
+     "Drucker-Prager fitted to Mohr-Coulomb's c, phi, psi, with a tension cut-off on the mean stress.",
+     "local sand = mpm.material.drucker_prager{ density = 2650, young = 8.4e5, poisson = 0.3, friction = 19.8, "
+     "fit = \"plane_strain\" }"},
+    {"material:kind", &guarded<material_kind>, "mat:kind()", {}, "The constitutive model's name.", "print(rock:kind())"},
+};
+
 }  // namespace
 
-void open_material(lua_State* L, int mpm) {
-  new_type<MaterialObject, material_tostring>(L, kMaterialType);
-  set_function<material_kind>(L, -1, "kind", "material:kind");
-  lua_pop(L, 1);
-  lua_newtable(L);
-  set_function<linear_elastic>(L, -1, "linear_elastic", "mpm.material.linear_elastic");
-  set_function<mohr_coulomb>(L, -1, "mohr_coulomb", "mpm.material.mohr_coulomb");
-  set_function<drucker_prager>(L, -1, "drucker_prager", "mpm.material.drucker_prager");
-  lua_setfield(L, mpm, "material");
-}
+std::span<const Function> material_functions() { return kMaterial; }
+
+void open_material(lua_State* L) { open_type<MaterialObject, material_tostring>(L, kMaterial); }
 
 }  // namespace seismpm::lua

@@ -63,23 +63,52 @@ struct HistoryObject {
   std::shared_ptr<const History> history;
 };
 
-// Registration of each object's functions and methods into the `mpm` table at `mpm`.
-void open_model(lua_State* L, int mpm);
+// Lua's type name of each object (self<T>, push_object<T>, check_object<T>).
+template <>
+struct LuaType<ModelObject> {
+  static constexpr const char* name = kModelType;
+};
+template <>
+struct LuaType<BodyObject> {
+  static constexpr const char* name = kBodyType;
+};
+template <>
+struct LuaType<ProbeObject> {
+  static constexpr const char* name = kProbeType;
+};
+template <>
+struct LuaType<MaterialObject> {
+  static constexpr const char* name = kMaterialType;
+};
+template <>
+struct LuaType<ShapeObject> {
+  static constexpr const char* name = kShapeType;
+};
+template <>
+struct LuaType<HistoryObject> {
+  static constexpr const char* name = kHistoryType;
+};
+
+// Registration of each binding file's table of functions (open_model first: it makes the model type).
+void open_model(lua_State* L);
+void open_model_building(lua_State* L);
+void open_phases(lua_State* L);
+void open_output(lua_State* L);
 void open_body(lua_State* L);
 void open_probe(lua_State* L);
-void open_material(lua_State* L, int mpm);
-void open_shape(lua_State* L, int mpm);
-void open_history(lua_State* L, int mpm);
-void open_help(lua_State* L, int mpm);
-void open_phases(lua_State* L);
-void open_plot(lua_State* L, int mpm);
+void open_material(lua_State* L);
+void open_shape(lua_State* L);
+void open_history(lua_State* L);
+void open_help(lua_State* L);
+void open_plot(lua_State* L);
+void open_library_support(lua_State* L);
 
 // A Lua function that a run calls every `every` seconds of simulated time and at its end
 // (m:run{ every, call }, m:dynamic_phase{ every, call }); the run stops when it returns true. Holds a
 // registry reference to the function while it lives.
 struct PeriodicCall {
   // Reads `every` and `call` (both or neither) from a run's arguments.
-  explicit PeriodicCall(Args& a);
+  explicit PeriodicCall(const Args& a);
   ~PeriodicCall();
   PeriodicCall(const PeriodicCall&) = delete;
   PeriodicCall& operator=(const PeriodicCall&) = delete;

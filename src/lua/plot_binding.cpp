@@ -1,4 +1,5 @@
 // mpm.plot: a PNG line plot of CSV columns (gnuplot).
+#include "api_docs.hpp"
 #include "binding.hpp"
 #include "io/csv_plot.hpp"
 #include "objects.hpp"
@@ -7,28 +8,45 @@ namespace seismpm::lua {
 
 namespace {
 
+const Key kPlotKeys[] = {
+    arg::string("file", "the CSV file, with a header line ('#' comment lines before it are skipped)").required(),
+    arg::string("x", "the column along x (its name in the header)").required(),
+    arg::names("y", "the columns plotted against x, one curve each").required(),
+    arg::string("png", "the picture written").shown("the CSV's name with .png"),
+    arg::string("title", "the plot's title").def_text(""),
+    arg::string("xlabel", "the x axis' label").def_text(""),
+    arg::string("ylabel", "the y axis' label").def_text(""),
+    arg::string("color", "a column: one point per row at (x, y[1]) coloured by it, axes to scale").def_text(""),
+};
+
 // mpm.plot{ file, x, y = {...}, png, title, xlabel, ylabel, color } -> png path
 int plot(lua_State* L) {
-  Args a(L, 1, {"file", "x", "y", "png", "title", "xlabel", "ylabel", "color"});
+  const Args a(L, 1, kPlotKeys);
   CsvPlot p;
   p.csv = a.string("file");
   p.x = a.string("x");
-  const auto y = a.names("y");
-  if (!y || y->empty()) throw Error("missing key 'y' (a list of column names)");
-  p.y = *y;
+  p.y = *a.names("y");
   const std::string stem = p.csv.size() > 4 && p.csv.substr(p.csv.size() - 4) == ".csv" ? p.csv.substr(0, p.csv.size() - 4) : p.csv;
   p.png = a.string("png", stem + ".png");
-  p.title = a.string("title", "");
-  p.xlabel = a.string("xlabel", "");
-  p.ylabel = a.string("ylabel", "");
-  p.color = a.string("color", "");
+  p.title = a.string("title");
+  p.xlabel = a.string("xlabel");
+  p.ylabel = a.string("ylabel");
+  p.color = a.string("color");
   plot_csv(p);
   lua_pushstring(L, p.png.c_str());
   return 1;
 }
 
+const Function kPlot[] = {
+    {"mpm.plot", &guarded<plot>, nullptr, kPlotKeys,
+     "A PNG line plot (gnuplot) of columns of a CSV file; returns the picture's path.",
+     "mpm.plot{ file = \"out/slide/front.csv\", x = \"time (s)\", y = {\"front x (m)\"}, title = \"Front\" }"},
+};
+
 }  // namespace
 
-void open_plot(lua_State* L, int mpm) { set_function<plot>(L, mpm, "plot", "mpm.plot"); }
+std::span<const Function> plot_functions() { return kPlot; }
+
+void open_plot(lua_State* L) { register_functions(L, kPlot); }
 
 }  // namespace seismpm::lua

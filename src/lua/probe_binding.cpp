@@ -1,6 +1,7 @@
 // Methods of a probe: get (the current value of a field), series (its recorded history), name.
 #include <sstream>
 
+#include "api_docs.hpp"
 #include "binding.hpp"
 #include "core/particle_fields.hpp"
 #include "objects.hpp"
@@ -9,10 +10,8 @@ namespace seismpm::lua {
 
 namespace {
 
-ProbeObject& self(lua_State* L) { return check_object<ProbeObject>(L, 1, kProbeType, "self"); }
-
 int probe_tostring(lua_State* L) {
-  const auto& p = self(L);
+  const auto& p = self<ProbeObject>(L);
   std::ostringstream os;
   os << "probe '" << p.probe->name() << "': particle " << p.probe->particle_id() << ", " << p.probe->samples()
      << " samples every " << p.handle->simulation.probe_every(*p.probe) << " s";
@@ -21,12 +20,12 @@ int probe_tostring(lua_State* L) {
 }
 
 int probe_name(lua_State* L) {
-  lua_pushstring(L, std::string(self(L).probe->name()).c_str());
+  lua_pushstring(L, std::string(self<ProbeObject>(L).probe->name()).c_str());
   return 1;
 }
 
 int probe_get(lua_State* L) {
-  const auto& p = self(L);
+  const auto& p = self<ProbeObject>(L);
   const Field f = field_argument(L, 2);
   const auto& m = p.handle->model;
   lua_pushnumber(L, field_value(m.particles(), m.index_of(p.probe->particle_id()), f));
@@ -35,7 +34,7 @@ int probe_get(lua_State* L) {
 
 // Returns two arrays: times and values.
 int probe_series(lua_State* L) {
-  const auto& p = self(L);
+  const auto& p = self<ProbeObject>(L);
   const Field f = field_argument(L, 2);
   const auto& t = p.probe->times();
   const auto v = p.probe->series(f);
@@ -49,14 +48,18 @@ int probe_series(lua_State* L) {
   return 2;
 }
 
+const Function kProbe[] = {
+    {"probe:name", &guarded<probe_name>, "p:name()", {}, "The probe's name.", "print(p1:name())"},
+    {"probe:get", &guarded<probe_get>, "p:get(field)", {}, "The current value of a field of the probe's particle.",
+     "print(p1:get(\"uy\"))"},
+    {"probe:series", &guarded<probe_series>, "p:series(field)", {},
+     "The recorded history: two arrays, times (s) and values.", "local t, uy = p1:series(\"uy\")"},
+};
+
 }  // namespace
 
-void open_probe(lua_State* L) {
-  new_type<ProbeObject, probe_tostring>(L, kProbeType);
-  set_function<probe_name>(L, -1, "name", "probe:name");
-  set_function<probe_get>(L, -1, "get", "probe:get");
-  set_function<probe_series>(L, -1, "series", "probe:series");
-  lua_pop(L, 1);
-}
+std::span<const Function> probe_functions() { return kProbe; }
+
+void open_probe(lua_State* L) { open_type<ProbeObject, probe_tostring>(L, kProbe); }
 
 }  // namespace seismpm::lua

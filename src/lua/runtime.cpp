@@ -1,10 +1,13 @@
 #include "runtime.hpp"
 
-#include <csignal>
+#include <lua.hpp>
+
 #include <cstdio>
 #include <filesystem>
 
+#include "api_docs.hpp"
 #include "binding.hpp"
+#include "lua_function.hpp"
 #include "objects.hpp"
 
 namespace seismpm::lua {
@@ -59,6 +62,18 @@ int out_dir(lua_State* L) {
   return 1;
 }
 
+const Function kSession[] = {
+    {"mpm.param", &guarded<param>, "mpm.param(name, default)", {},
+     "A scenario parameter: the value given on the command line with --set name=value, converted to the type of "
+     "default (number, boolean or string), or default when not given.",
+     "local cell = mpm.param(\"cell\", 0.01)"},
+    {"mpm.version", &guarded<version>, "mpm.version()", {}, "The seismpm version as a string.", "print(mpm.version())"},
+    {"mpm.out_dir", &guarded<out_dir>, "mpm.out_dir(default)", {},
+     "The output directory: the one given with --out, or default. --out replaces such defaults only: m:output "
+     "writes into the dir it is given, so a script that honours --out passes dir = mpm.out_dir(...).",
+     "local dir = mpm.out_dir(\"out/column\")"},
+};
+
 // Message handler: adds a traceback to an error message.
 int traceback(lua_State* L) {
   const char* msg = lua_tostring(L, 1);
@@ -80,8 +95,11 @@ std::string data_path(lua_State* L, const std::string& file) {
   return fs::exists(beside) ? beside.string() : file;
 }
 
+std::span<const Function> session_functions() { return kSession; }
+
 Session& session(lua_State* L) {
-  lua_getfield(L, LUA_REGISTRYINDEX, kSessionKey);
+  lua_pushstring(L, kSessionKey);
+  lua_rawget(L, LUA_REGISTRYINDEX);
   auto* s = static_cast<Session*>(lua_touserdata(L, -1));
   lua_pop(L, 1);
   return *s;
@@ -91,24 +109,25 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   L_ = luaL_newstate();
   if (!L_) throw std::runtime_error("cannot create a Lua state (out of memory)");
   luaL_openlibs(L_);
+  open_state_life(L_);  // first: see lua_function.hpp
   lua_pushlightuserdata(L_, &session_);
   lua_setfield(L_, LUA_REGISTRYINDEX, kSessionKey);
 
   lua_newtable(L_);
-  const int mpm = lua_gettop(L_);
-  open_model(L_, mpm);
+  lua_setglobal(L_, "mpm");
+  open_model(L_);  // first: it makes the model type that the next three add methods to
+  open_model_building(L_);
+  open_phases(L_);
+  open_output(L_);
   open_body(L_);
   open_probe(L_);
-  open_material(L_, mpm);
-  open_shape(L_, mpm);
-  open_history(L_, mpm);
-  open_phases(L_);
-  open_plot(L_, mpm);
-  open_help(L_, mpm);
-  set_function<param>(L_, mpm, "param", "mpm.param");
-  set_function<version>(L_, mpm, "version", "mpm.version");
-  set_function<out_dir>(L_, mpm, "out_dir", "mpm.out_dir");
-  lua_setglobal(L_, "mpm");
+  open_material(L_);
+  open_shape(L_);
+  open_history(L_);
+  open_plot(L_);
+  open_help(L_);
+  open_library_support(L_);
+  register_functions(L_, kSession);
 
   // The Lua library: `require "seismpm"` finds lua/seismpm.lua in the first directory that has it.
   std::string path;
@@ -125,6 +144,8 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
 }
 
 Runtime::~Runtime() { lua_close(L_); }
+
+const char* Runtime::lua_version() { return LUA_VERSION_MAJOR "." LUA_VERSION_MINOR; }
 
 int Runtime::call(int nargs, int nresults) {
   const int base = lua_gettop(L_) - nargs;
@@ -143,7 +164,11 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
     lua_pushstring(L_, args[i].c_str());
     lua_rawseti(L_, -2, static_cast<lua_Integer>(i + 1));
   }
-  lua_setglobal(L_, "arg");
+  lua_rawgeti(L_, LUA_REGISTRYINDEX, LUA_RIDX_GLOBALS);  // raw: an earlier chunk may have set a metatable on _G
+  lua_pushstring(L_, "arg");
+  lua_pushvalue(L_, -3);
+  lua_rawset(L_, -3);
+  lua_pop(L_, 2);
   std::error_code ec;
   session_.script_dir = std::filesystem::absolute(file, ec).parent_path().string();
   if (luaL_loadfile(L_, file.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {

@@ -1,12 +1,14 @@
-// A Lua state with the `mpm` module, the Lua-side library (lua/) and help() loaded.
+// A Lua state with the `mpm` module, the Lua-side library (lua/) and help() loaded, and what the
+// console needs of it (completion, Ctrl-C, running an entry), so that nothing outside src/lua uses
+// Lua's C API.
 #pragma once
-
-#include <lua.hpp>
 
 #include <string>
 #include <vector>
 
 #include "session.hpp"
+
+struct lua_State;
 
 namespace seismpm::lua {
 
@@ -21,6 +23,8 @@ class Runtime {
   Runtime& operator=(const Runtime&) = delete;
 
   lua_State* state() const { return L_; }
+  // "5.4"
+  static const char* lua_version();
 
   // Runs a file with `args` as the global `arg`; on error prints "file:line: message" and a
   // traceback to stderr and returns false.
@@ -29,10 +33,26 @@ class Runtime {
   bool run_string(const std::string& code, const std::string& name);
   // Runs a chunk; on failure returns false and leaves the message (with traceback) in `error`.
   bool execute(const std::string& code, const std::string& name, std::string& error);
-  // Compiles and runs a chunk, printing any error; used by the console. Returns the status.
-  int call(int nargs, int nresults);
+
+  // The console's side (runtime_console.cpp).
+  enum class Entry { Done, Failed, Incomplete };
+  // Runs one console entry: an expression prints its values ("return <entry>" is tried first), a
+  // statement runs. Incomplete: the entry ended early (an open block) and runs nothing yet. `output`
+  // gets the values shown (tab-separated) or the error with its traceback.
+  Entry run_entry(const std::string& entry, std::string& output);
+  // Completion candidates for the text before the cursor (mpm._complete of lua/seismpm.lua).
+  std::vector<std::string> complete(const std::string& text);
+  // Ctrl-C, from a signal handler: a run stops at its next step boundary, Lua code at its next
+  // instruction (a hook, as lua.c does).
+  void interrupt();
+  // Clears a pending Ctrl-C before the next entry runs.
+  void clear_interrupt();
 
  private:
+  // Calls the function below `nargs` arguments with a traceback handler; returns the status.
+  int call(int nargs, int nresults);
+  std::string shown(int index);  // a value as the console prints it
+
   lua_State* L_;
   Session& session_;
 };

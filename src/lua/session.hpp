@@ -2,13 +2,13 @@
 // --quiet) and the Ctrl-C flag that stops a run at the next step boundary.
 #pragma once
 
-#include <lua.hpp>
-
 #include <atomic>
 #include <map>
 #include <string>
 
 #include "io/progress.hpp"
+
+struct lua_State;
 
 namespace seismpm::lua {
 

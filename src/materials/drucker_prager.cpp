@@ -50,16 +50,13 @@ DruckerPragerConstants drucker_prager_constants(const DruckerPragerParameters& p
 
 void validate(const DruckerPragerParameters& p) {
   validate_elastic(p.density, {p.young, p.poisson});
-  if (!(p.cohesion >= 0.0) || !std::isfinite(p.cohesion)) throw InputError("cohesion must be >= 0 (Pa)");
-  if (!(p.friction >= 0.0 && p.friction < 90.0)) throw InputError("friction must be in [0, 90) degrees");
-  if (!(p.dilation >= 0.0 && p.dilation <= p.friction)) throw InputError("dilation must be in [0, friction] degrees");
-  if (p.friction == 0.0 && p.cohesion == 0.0) throw InputError("cohesion and friction cannot both be zero");
-  if (!(p.tension >= 0.0) || !std::isfinite(p.tension)) throw InputError("tension must be >= 0 (Pa)");
+  validate_strength(p);
   if (p.friction > 0.0) {
     const auto c = drucker_prager_constants(p);
     const double apex = c.k / (3.0 * c.alpha);  // mean stress at the cone's apex
     if (p.tension > apex * (1.0 + 1e-12))
-      throw InputError("tension must not exceed the apex mean stress " + std::to_string(apex) + " Pa");
+      throw ParameterError({"tension"}, "must be in [0, " + number_text(apex) +
+                                            "] (Pa, at most the apex mean stress of the cone), got " + number_text(p.tension));
   }
 }
 

@@ -10,18 +10,19 @@
 
 #include "core/material.hpp"
 #include "linear_elastic.hpp"
+#include "strength_parameters.hpp"
 
 namespace seismpm {
 
 enum class DruckerPragerFit { PlaneStrain, Outer, Inner };
 
-struct DruckerPragerParameters {
+// Mohr-Coulomb's strength; here `tension` limits the mean stress I1/3 (Pa), at most the cone's apex.
+struct DruckerPragerParameters : StrengthParameters {
   double density = 0, young = 0, poisson = 0;
-  double cohesion = 0, friction = 30, dilation = 0;  // Pa, degrees, degrees
-  double tension = 0;                                // limit of the mean stress I1/3 (Pa)
   DruckerPragerFit fit = DruckerPragerFit::PlaneStrain;
 };
 
+// Throws ParameterError naming the parameter that is out of range.
 void validate(const DruckerPragerParameters& p);
 DruckerPragerFit parse_fit(const std::string& name);  // throws InputError
 

@@ -1,15 +1,11 @@
 #include "linear_elastic.hpp"
 
-#include <cmath>
-
-#include "core/error.hpp"
-
 namespace seismpm {
 
 void validate_elastic(double density, const ElasticConstants& e) {
-  if (!(density > 0.0) || !std::isfinite(density)) throw InputError("density must be > 0 (kg/m^3)");
-  if (!(e.young > 0.0) || !std::isfinite(e.young)) throw InputError("young must be > 0 (Pa)");
-  if (!(e.poisson >= 0.0 && e.poisson < 0.5)) throw InputError("poisson must be in [0, 0.5)");
+  check_parameter("density", density, kDensityRange, "kg/m^3");
+  check_parameter("young", e.young, kYoungRange, "Pa");
+  check_parameter("poisson", e.poisson, kPoissonRange);
 }
 
 LinearElastic::LinearElastic(double density, double young, double poisson)

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/material.hpp"
+#include "core/parameter.hpp"
 
 namespace seismpm {
 
@@ -15,7 +16,13 @@ struct ElasticConstants {
   double p_wave() const { return bulk() + 4.0 / 3.0 * shear(); }
 };
 
-// Throws InputError naming the bad parameter: density > 0, young > 0, poisson in [0, 0.5).
+// The ranges validate_elastic checks (and the Lua help shows): Poisson's ratio below 0.5, where the
+// bulk modulus becomes infinite.
+inline constexpr Interval kDensityRange = above(0.0);   // kg/m^3
+inline constexpr Interval kYoungRange = above(0.0);     // Pa
+inline constexpr Interval kPoissonRange = closed_open(0.0, 0.5);
+
+// Throws ParameterError naming the bad parameter ("density", "young", "poisson").
 void validate_elastic(double density, const ElasticConstants& e);
 
 // Adds the elastic response to the strain increment de: sigma + D de.

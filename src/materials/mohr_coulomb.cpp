@@ -48,26 +48,21 @@ double equivalent_shear(const Eigen::Vector3d& e) {
 
 void validate(const MohrCoulombParameters& p) {
   validate_elastic(p.density, {p.young, p.poisson});
-  if (!(p.cohesion >= 0.0) || !std::isfinite(p.cohesion)) throw InputError("cohesion must be >= 0 (Pa)");
-  if (!(p.friction >= 0.0 && p.friction < 90.0)) throw InputError("friction must be in [0, 90) degrees");
-  if (!(p.dilation >= 0.0 && p.dilation <= p.friction)) throw InputError("dilation must be in [0, friction] degrees");
-  if (!(p.tension >= 0.0) || !std::isfinite(p.tension)) throw InputError("tension must be >= 0 (Pa)");
+  validate_strength(p);
   if (p.friction > 0.0) {
     const double apex = p.cohesion / std::tan(p.friction * kDeg);
+    // The relative slack forgives a tension computed as c / tan(phi) in another order.
     if (p.tension > apex * (1.0 + 1e-12))
-      throw InputError("tension must not exceed the apex value c cot(phi) = " + std::to_string(apex) + " Pa");
+      throw ParameterError({"tension"}, "must be in [0, c cot(phi) = " + number_text(apex) +
+                                            "] (Pa, at most the apex of the yield surface), got " + number_text(p.tension));
   }
-  if (p.friction == 0.0 && p.cohesion == 0.0) throw InputError("cohesion and friction cannot both be zero");
-  if (p.softening) {
-    if (!(p.residual_cohesion >= 0.0 && p.residual_cohesion <= p.cohesion))
-      throw InputError("softening: residual cohesion must be in [0, cohesion] (Pa)");
-    if (!(p.residual_friction >= 0.0 && p.residual_friction <= p.friction))
-      throw InputError("softening: residual friction must be in [0, friction] degrees");
-    if (!(p.softening_strain > 0.0) || !std::isfinite(p.softening_strain))
-      throw InputError("softening: strain must be > 0");
-    if (p.residual_friction == 0.0 && p.residual_cohesion == 0.0)
-      throw InputError("softening: residual cohesion and friction cannot both be zero");
-  }
+  if (!p.softening) return;
+  check_parameter("softening.cohesion", p.residual_cohesion, closed(0.0, p.cohesion), "Pa, the residual cohesion at most the peak");
+  check_parameter("softening.friction", p.residual_friction, closed(0.0, p.friction),
+                  "degrees, the residual friction at most the peak");
+  check_parameter("softening.strain", p.softening_strain, above(0.0));
+  if (p.residual_friction == 0.0 && p.residual_cohesion == 0.0)
+    throw ParameterError({"softening.cohesion", "softening.friction"}, "cannot both be zero");
 }
 
 // Active sets, from the simplest: the first whose multipliers are >= 0 and whose result is admissible

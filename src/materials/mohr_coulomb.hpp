@@ -8,21 +8,20 @@
 
 #include "core/material.hpp"
 #include "linear_elastic.hpp"
+#include "strength_parameters.hpp"
 
 namespace seismpm {
 
-struct MohrCoulombParameters {
+// The strength (c, phi, psi, tension; tension at most the apex c cot(phi)) and its softening.
+struct MohrCoulombParameters : StrengthParameters {
   double density = 0, young = 0, poisson = 0;
-  double cohesion = 0;        // Pa
-  double friction = 30;       // degrees
-  double dilation = 0;        // degrees, 0 <= psi <= phi
-  double tension = 0;         // tensile strength (Pa), 0 <= T <= c cot(phi)
   bool softening = false;     // linear from (c, phi) to (residual_cohesion, residual_friction) ...
   double residual_cohesion = 0, residual_friction = 0;
   double softening_strain = 0;  // ... reached at this accumulated plastic shear strain
 };
 
-// Throws InputError naming the parameter that is out of range.
+// Throws ParameterError naming the parameter that is out of range; the softening parameters are named
+// softening.cohesion, softening.friction and softening.strain.
 void validate(const MohrCoulombParameters& p);
 
 class MohrCoulomb : public Material {

@@ -1,6 +1,8 @@
 // A fresh Lua runtime per test, quiet, with the project's Lua library.
 #pragma once
 
+#include <lua.hpp>
+
 #include <string>
 
 #include "lua/runtime.hpp"

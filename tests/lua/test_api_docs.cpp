@@ -16,7 +16,7 @@ TEST_CASE("every registered API function is documented", "[lua][docs]") {
     lua_pop(L, 1);
     if (name.find("__tostring") != std::string::npos) continue;
     CAPTURE(name);
-    const auto* doc = seismpm::lua::find_doc(name);
+    const auto* doc = seismpm::lua::find_function(name);
     REQUIRE(doc != nullptr);
     CHECK(std::string(doc->example).size() > 5);
     ++count;
@@ -27,7 +27,7 @@ TEST_CASE("every registered API function is documented", "[lua][docs]") {
 TEST_CASE("help() knows every documented name, function and object", "[lua][docs]") {
   seismpm::test::LuaFixture f;
   std::string chunk = "help()\n";
-  for (const auto& d : seismpm::lua::api_docs()) chunk += std::string("help('") + d.name + "')\n";
+  for (const auto* d : seismpm::lua::api_functions()) chunk += std::string("help('") + d->name + "')\n";
   chunk += R"(
     help(mpm.model); help(mpm.geometry.slope); help(mpm.material.mohr_coulomb)
     local m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }

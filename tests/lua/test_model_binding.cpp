@@ -167,10 +167,14 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {std::string("mpm.model{ ") + domain + ", cell = 'fine' }", "key 'cell' must be a number, got string"},
       {std::string("mpm.model{ ") + domain + ", cell = 0 }", "key 'cell' must be > 0 (m), got 0"},
       {std::string("mpm.model{ ") + domain + ", cell = 0.1, shape = 'cubic' }", "key 'shape' must be one of linear|gimp"},
-      {std::string("mpm.model{ ") + domain + ", cell = 0.1, cfl = 2 }", "key 'cfl' must be in [1e-06, 1]"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, cfl = 2 }", "key 'cfl' must be in (0, 1], got 2"},
       {"mpm.model{ domain = {{0, 0}, {0, 1}}, cell = 0.1 }", "key 'domain' is empty"},
       {"mpm.model{ domain = {{0, 0, 0}, {1, 1, 1}}, cell = 0.1 }", "3D models are not available"},
       {"mpm.model(5)", "expects a table of named arguments"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, cfl = 0 }", "key 'cfl' must be in (0, 1], got 0"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, max_dilation = 0.5 }", "key 'max_dilation' must be 0 or >= 1, got 0.5"},
+      // The kernel's rule, in the kernel: at least 2 cells after rounding up (Grid, Model).
+      {"mpm.model{ domain = {{0, 0}, {1, 0.1}}, cell = 0.1 }", "mpm.model: model: the domain must span at least 2 cells"},
       {"mpm.material.linear_elastic{ density = 1000, young = 0, poisson = 0.3 }", "key 'young' must be > 0 (Pa)"},
       {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.5 }", "key 'poisson' must be in [0, 0.5)"},
       {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = -0.1 }", "key 'poisson' must be in [0, 0.5)"},
@@ -199,7 +203,9 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {"mpm.shape.rectangle{ 1, 0, 0, 1 }", "x0 < x1"},
       {"mpm.shape.polyline{ {0, 0}, {1, 0}, thickness = 0 }", "key 'thickness' must be > 0"},
       {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.5, 0.5, 1.5, 0.9} }", "reaches outside the domain"},
-      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 0 }", "key 'ppc' must be in [1, 8]"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 0 }", "key 'ppc' must be in [1, 16], got 0"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 17 }", "key 'ppc' must be in [1, 16], got 17"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 2.5 }", "key 'ppc' must be a whole number, got 2.5"},
       {model + "m:body{ shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }", "key 'material' must be a material, got nil"},
       {model + "m:body{ material = 5, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }", "key 'material' must be a material, got number"},
       {model + "m:body{ material = mat }", "missing key 'shape'"},
@@ -250,6 +256,19 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
     const std::string error = f.error_of(c.code);
     CHECK_THAT(error, Contains(c.expected) && Contains("test:1:"));
   }
+}
+
+TEST_CASE("the ranges are the kernel's: cfl (0, 1], ppc 1..16, a domain of 1.5 cells", "[lua][errors]") {
+  LuaFixture f;
+  CHECK(f.error_of(R"(
+    -- 1.5 cells round up to 2, as Grid and Model take them.
+    local m = mpm.model{ domain = {{0, 0}, {0.15, 1}}, cell = 0.1, cfl = 1e-7 }
+    assert(tostring(m):find("2 x 10 cells"), tostring(m))
+    local mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3 }
+    local b = m:body{ material = mat, shape = mpm.shape.rectangle{0, 0, 0.1, 0.1}, ppc = 16 }
+    assert(b:count() == 256, "count " .. b:count())
+    mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1, cfl = 1 }  -- the upper end is in
+  )") == "");
 }
 
 TEST_CASE("a rigid base and frictional contact from Lua", "[lua][contact]") {

@@ -1,0 +1,222 @@
+// Building a model: m:body, m:rigid, m:contact, m:set_friction, m:fix, m:probe.
+#include <array>
+#include <cmath>
+#include <sstream>
+
+#include "api_docs.hpp"
+#include "binding.hpp"
+#include "objects.hpp"
+
+namespace seismpm::lua {
+
+namespace {
+
+// The kernel's range (Model::new_body refuses the rest).
+const Key kPpc = arg::integer("ppc", "particles per cell along each axis").in(closed(1, 16)).def(2);
+const Key kShape = arg::custom("shape", "mpm.shape.*", "", "the region filled, inside the domain").required();
+
+const Key kBodyKeys[] = {
+    arg::string("name", "the body's name, unique in the model").shown("bodyN"),
+    arg::object("material", kMaterialType, "its material (mpm.material.*)").required(),
+    kShape,
+    kPpc,
+};
+const Key kRigidKeys[] = {
+    arg::string("name", "the body's name, unique in the model").shown("rigidN"),
+    kShape,
+    kPpc,
+    arg::custom("velocity", "{vx, vy}: numbers or histories", "m/s", "the velocity it follows, read at the phase time")
+        .shown("{0, 0}"),
+    arg::number("density", "kg/m3", "only gives the particles a mass to show").in(above(0)).def(7850),
+};
+const Key kContactKeys[] = {
+    arg::positional("body_a, body_b", "the two bodies (not both rigid)"),
+    arg::number("friction", "", "Coulomb coefficient mu: 0 smooth, 1 rough").in(at_least(0)).required(),
+};
+const Key kFixKeys[] = {
+    arg::choice("side", "left|right|bottom|top", nullptr, "the edge of the domain"),
+    arg::choice("dof", "x|y|xy", "xy", "the velocity components held"),
+};
+const Key kProbeKeys[] = {
+    arg::string("name", "the probe's name, unique in the model").shown("probeN"),
+    arg::object("body", kBodyType, "the body whose particle it follows").required(),
+    arg::point("at", "m", "the particle of the body nearest to it is followed").required(),
+    arg::number("every", "s", "sampling interval of simulated time (0: every step)").in(at_least(0)).def(0.01),
+};
+
+// The shape under key 'shape', checked to lie in the model's domain.
+std::shared_ptr<const Region> shape_argument(const Args& a, const ModelHandle& h) {
+  auto region = object_argument<ShapeObject>(a, "shape").region;
+  const auto& g = h.model.grid();
+  const double tol = 1e-9 * g.cell();
+  const Vec<2> lo = g.domain_lower(), hi = g.domain_upper();
+  if ((region->lower().array() < lo.array() - tol).any() || (region->upper().array() > hi.array() + tol).any())
+    throw Error("key 'shape': " + region->describe() + " reaches outside the domain " + point_text(lo) + " to " +
+                point_text(hi));
+  return region;
+}
+
+std::string body_name_argument(const Args& a, const ModelHandle& h, const char* stem) {
+  const std::string name = a.string("name", stem + std::to_string(h.model.bodies().size() + 1));
+  for (const auto& b : h.model.bodies())
+    if (b.name == name) throw Error("key 'name': a body called '" + name + "' exists already");
+  return name;
+}
+
+void fill_region(ModelHandle& h, int body, int material, const Region& region, int ppc) {
+  const std::size_t added =
+      h.model.fill(body, material, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); },
+                   [&](const Vec<2>& x) { return region.outward_normal(x); });
+  if (added == 0)
+    throw Error("key 'shape': " + region.describe() + " holds no particle at ppc = " + std::to_string(ppc) +
+                " (smaller than a particle spacing of " + std::to_string(h.model.grid().cell() / ppc) + " m?)");
+}
+
+int model_body(lua_State* L) {
+  const auto handle = self<ModelObject>(L).handle;
+  ModelHandle& h = *handle;
+  const Args a(L, 2, kBodyKeys);
+  const std::string name = body_name_argument(a, h, "body");
+  const auto material = object_argument<MaterialObject>(a, "material").material;
+  const int ppc = a.integer("ppc");
+  const auto region = shape_argument(a, h);
+  const int body = h.model.add_body(name, ppc);
+  fill_region(h, body, h.material(material), *region, ppc);
+  push_object(L, BodyObject{handle, body});
+  return 1;
+}
+
+// m:rigid{ name, shape, ppc, velocity = {vx, vy}, density }
+int model_rigid(lua_State* L) {
+  const auto handle = self<ModelObject>(L).handle;
+  ModelHandle& h = *handle;
+  const Args a(L, 2, kRigidKeys);
+  const std::string name = body_name_argument(a, h, "rigid");
+  const int ppc = a.integer("ppc");
+  const double density = a.number("density");
+  a.push("velocity");
+  const auto velocity = rigid_velocity(L, -1, "key 'velocity'");
+  lua_pop(L, 1);
+  const auto region = shape_argument(a, h);
+  const int body = h.model.add_rigid_body(name, ppc, density, velocity);
+  fill_region(h, body, -1, *region, ppc);
+  push_object(L, BodyObject{handle, body});
+  return 1;
+}
+
+// The two bodies of m:contact{ a, b, ... } and m:set_friction{ a, b, ... }.
+std::array<int, 2> body_pair(const Args& a, const std::shared_ptr<ModelHandle>& handle, const char* usage) {
+  lua_State* L = a.state();
+  if (a.length() != 2) throw Error(std::string("name the two bodies: ") + usage);
+  std::array<int, 2> body{};
+  for (int k = 0; k < 2; ++k) {
+    lua_rawgeti(L, a.index(), k + 1);
+    const auto& b = check_object<BodyObject>(L, -1, k ? "the second body" : "the first body");
+    if (b.handle != handle) throw Error(std::string(k ? "the second" : "the first") + " body belongs to another model");
+    body[k] = b.body;
+    lua_pop(L, 1);
+  }
+  return body;
+}
+
+// m:contact{ body_a, body_b, friction = mu }
+int model_contact(lua_State* L) {
+  const auto handle = self<ModelObject>(L).handle;
+  const Args a(L, 2, kContactKeys);
+  const auto body = body_pair(a, handle, "m:contact{ body_a, body_b, friction = mu } (bodies in contact)");
+  handle->model.add_contact(body[0], body[1], a.number("friction"));  // names the bodies of a pair declared twice or with itself
+  return 0;
+}
+
+// m:set_friction{ body_a, body_b, friction = mu }
+int model_set_friction(lua_State* L) {
+  const auto handle = self<ModelObject>(L).handle;
+  const Args a(L, 2, kContactKeys);
+  const auto body = body_pair(a, handle, "m:set_friction{ body_a, body_b, friction = mu }");
+  handle->model.set_contact_friction(body[0], body[1], a.number("friction"));
+  return 0;
+}
+
+int model_fix(lua_State* L) {
+  ModelHandle& h = *self<ModelObject>(L).handle;
+  const Args a(L, 2, kFixKeys);
+  h.model.grid().fix(parse_side(a.choice("side"), 2), parse_dof(a.choice("dof"), 2));
+  return 0;
+}
+
+int model_probe(lua_State* L) {
+  const auto handle = self<ModelObject>(L).handle;
+  const Args a(L, 2, kProbeKeys);
+  Simulation<2>& sim = handle->simulation;
+  const std::string name = a.string("name", "probe" + std::to_string(sim.probes().size() + 1));
+  for (const auto& p : sim.probes())
+    if (std::string(p->name()) == name) throw Error("key 'name': a probe called '" + name + "' exists already");
+  const int body = object_argument<BodyObject>(a, "body").body;
+  const Vec<2> at = a.point("at");
+  // The particle of the body nearest to `at`.
+  const auto& p = handle->model.particles();
+  double best = INFINITY;
+  int id = -1;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.body[i] == body && (p.x[i] - at).norm() < best) best = (p.x[i] - at).norm(), id = p.id[i];
+  if (id < 0) throw Error("key 'body' has no particles");
+  push_object(L, ProbeObject{handle, sim.add_probe(name, id, a.number("every"))});
+  return 1;
+}
+
+const Function kBuilding[] = {
+    {"model:body", &guarded<model_body>, nullptr, kBodyKeys,
+     "Fills a shape with particles of a material and returns the body.",
+     "local soil = m:body{ name = \"soil\", material = sand, shape = mpm.shape.rectangle{0, 0, 1, 0.5}, ppc = 2 }"},
+    {"model:rigid", &guarded<model_rigid>, nullptr, kRigidKeys,
+     "A rigid body of prescribed-velocity particles (a shaking-table box, the surface under a landslide): fills the "
+     "shape (rectangle, polygon, or polyline with a thickness) and returns the body. Each step the nodes of the "
+     "cells holding its particles take their volume-weighted velocity (the paper's Eq. 9); the soil sees it through "
+     "m:contact, or, with no contact declared, moves with it (no slip). Written to rigid_NNNNNN.vtu; b:reaction() "
+     "gives its force on the soil. For an inclined sliding surface use a one-sided polyline band (side = \"left\" | "
+     "\"right\"): its particles carry the line's normal, so contact follows the true surface rather than the grid's "
+     "staircase of cells. Make a rigid body at least one cell thick.",
+     "local base = m:rigid{ name = \"base\", shape = mpm.shape.rectangle{-2.5, -0.1, 2.0, 0}, ppc = 1, "
+     "velocity = {vx, 0} }"},
+    {"model:contact", &guarded<model_contact>, nullptr, kContactKeys,
+     "Frictional contact between two bodies (Bardenhagen): where they meet they may slide with Coulomb friction and "
+     "separate freely; they never interpenetrate. Without m:contact bodies share one velocity field where they meet "
+     "(no slip, no separation). One declaration per pair.",
+     "m:contact{ block, base, friction = 0.3 }"},
+    {"model:set_friction", &guarded<model_set_friction>, nullptr, kContactKeys,
+     "Changes the Coulomb coefficient of a declared contact pair from the next step on: a peak value for the "
+     "gravity phase, a residual one once shaking has broken the interface.",
+     "m:set_friction{ rock, bedding, friction = 0.2 }"},
+    {"model:fix", &guarded<model_fix>, nullptr, kFixKeys, "Holds the grid nodes on one edge of the domain.",
+     "m:fix{ side = \"bottom\", dof = \"xy\" }; m:fix{ side = \"left\", dof = \"x\" }"},
+    {"model:probe", &guarded<model_probe>, nullptr, kProbeKeys,
+     "A control point: follows a particle of the body and records all its fields every `every` seconds of "
+     "simulated time and at the end of each run.",
+     "local p1 = m:probe{ name = \"crest\", body = soil, at = {0.3, 0.5} }"},
+};
+
+}  // namespace
+
+// The velocity of a rigid body at `index`: {vx, vy}, each a number (m/s) or a history (read raw).
+std::array<std::shared_ptr<const History>, 2> rigid_velocity(lua_State* L, int index, const std::string& what) {
+  index = lua_absindex(L, index);
+  std::array<std::shared_ptr<const History>, 2> v;
+  if (lua_isnil(L, index)) {
+    v.fill(std::make_shared<ConstantHistory>(0.0));
+    return v;
+  }
+  if (!lua_istable(L, index) || lua_rawlen(L, index) != 2)
+    throw Error(what + " must be {vx, vy}: two numbers (m/s) or histories, got " + type_name(L, index));
+  for (int d = 0; d < 2; ++d) {
+    lua_rawgeti(L, index, d + 1);
+    v[d] = to_history(L, -1, what + (d ? " vy" : " vx"));
+    lua_pop(L, 1);
+  }
+  return v;
+}
+
+std::span<const Function> model_building_functions() { return kBuilding; }
+
+void open_model_building(lua_State* L) { register_functions(L, kBuilding); }
+
+}  // namespace seismpm::lua

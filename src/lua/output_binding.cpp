@@ -1,0 +1,110 @@
+// A model's files: m:output (ParaView files and probes.csv as a run goes), m:write, m:plot.
+#include <algorithm>
+
+#include "api_docs.hpp"
+#include "binding.hpp"
+#include "core/particle_fields.hpp"
+#include "io/atomic_file.hpp"
+#include "io/probe_plot.hpp"
+#include "objects.hpp"
+#include "session.hpp"
+
+namespace seismpm::lua {
+
+namespace {
+
+const OutputSettings kOutput;  // the writer's defaults
+
+const Key kOutputKeys[] = {
+    arg::string("dir", "the directory, used as given").shown("the --out directory (required without --out)"),
+    arg::number("every", "s", "simulated time between files").in(above(0)).def(kOutput.every),
+    arg::names("fields", "the particle fields written; components such as ux select their vector").shown("all"),
+    arg::boolean("grid", kOutput.grid, "also grid_NNNNNN.vtu with nodal mass, velocity and fixities"),
+    arg::number("probe_every", "s", "every probe's sampling interval").in(at_least(0)).shown("each probe's own"),
+    arg::boolean("at_run_end", true,
+                 "a file at the end of each run too (false: a script that runs in short chunks then only writes "
+                 "every `every` seconds)"),
+};
+const Key kPlotKeys[] = {
+    arg::names("quantities", "particle fields of the probes, one picture each").def_text("ux|uy"),
+};
+
+ModelHandle& handle_of(lua_State* L) { return *self<ModelObject>(L).handle; }
+
+// m:output{ dir, every, fields, grid, probe_every, at_run_end }
+int model_output(lua_State* L) {
+  ModelHandle& h = handle_of(L);
+  const Args a(L, 2, kOutputKeys);
+  OutputSettings s;
+  // A dir given is used as it is; without one, the --out directory (Session::output_dir), if any.
+  const Session& command_line = session(L);
+  s.dir = a.has("dir") || command_line.out_dir.empty() ? a.string("dir") : command_line.output_dir("");
+  s.every = a.number("every");
+  s.grid = a.boolean("grid");
+  const bool at_run_end = a.boolean("at_run_end");
+  if (const auto fields = a.names("fields")) {
+    s.arrays.clear();
+    for (const auto& name : *fields) {
+      const VtuArray array = parse_vtu_array(name);
+      if (std::find(s.arrays.begin(), s.arrays.end(), array) == s.arrays.end()) s.arrays.push_back(array);
+    }
+  }
+  if (auto pe = a.optional_number("probe_every")) h.simulation.set_probe_every(*pe);
+  h.simulation.set_output(s, at_run_end);  // writes the state as it is now
+  return 0;
+}
+
+// m:write(): the current state on file now (when it is not already).
+int model_write(lua_State* L) {
+  ModelHandle& h = handle_of(L);
+  if (!h.simulation.output()) throw Error("no output directory yet: call m:output{ dir = ... } first");
+  h.simulation.write();
+  return 0;
+}
+
+// m:plot{ quantities = {"ux", "uy"} } -> list of PNG files
+int model_plot(lua_State* L) {
+  ModelHandle& h = handle_of(L);
+  if (lua_isnoneornil(L, 2)) {  // m:plot(): every default
+    lua_settop(L, 1);
+    lua_newtable(L);
+  }
+  const auto quantities = *Args(L, 2, kPlotKeys).names("quantities");
+  for (const auto& q : quantities)
+    if (!parse_field(q, 2)) throw Error("key 'quantities': '" + q + "' is not a field name (" + field_names(2) + ")");
+  const Output<2>* output = h.simulation.output();
+  if (!output) throw Error("no output directory yet: call m:output{ dir = ... } first");
+  if (h.simulation.probes().empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
+  write_file_atomically(output->settings().dir + "/probes.csv", probes_csv_text(h.simulation.probes()));
+  const auto files = plot_probes(output->settings().dir, quantities);
+  lua_createtable(L, static_cast<int>(files.size()), 0);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    lua_pushstring(L, files[i].c_str());
+    lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+  }
+  return 1;
+}
+
+const Function kOutputFunctions[] = {
+    {"model:output", &guarded<model_output>, nullptr, kOutputKeys,
+     "Writes ParaView files into dir: particles_NNNNNN.vtu now, every `every` seconds of simulated time and at the "
+     "end of each run, listed with their times in particles.pvd (open that one in ParaView); probes.csv with every "
+     "field of every probe.",
+     "m:output{ dir = \"out/slope\", every = 0.1, probe_every = 0.01 }"},
+    {"model:write", &guarded<model_write>, "m:write()", {},
+     "Writes the current state to the output directory now (particles, rigid bodies, probes, reactions), unless "
+     "it is on file already; for scripts that run in chunks with at_run_end = false.",
+     "m:write()"},
+    {"model:plot", &guarded<model_plot>, nullptr, kPlotKeys,
+     "PNG time histories of the probes in the output directory with gnuplot (probe_<quantity>.png, one curve per "
+     "probe, axes with units); returns the file names. From the shell: seismpm plot DIR ux uy.",
+     "for _, png in ipairs(m:plot{ quantities = {\"ux\", \"uy\"} }) do print(png) end"},
+};
+
+}  // namespace
+
+std::span<const Function> output_functions() { return kOutputFunctions; }
+
+void open_output(lua_State* L) { register_functions(L, kOutputFunctions); }
+
+}  // namespace seismpm::lua
