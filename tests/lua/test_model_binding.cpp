@@ -258,7 +258,7 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
   }
 }
 
-TEST_CASE("the ranges are the kernel's: cfl (0, 1], ppc 1..16, a domain of 1.5 cells", "[lua][errors]") {
+TEST_CASE("the ranges are the kernel's: cfl above 0 and up to 1, ppc 1..16, a domain of 1.5 cells", "[lua][errors]") {
   LuaFixture f;
   CHECK(f.error_of(R"(
     -- 1.5 cells round up to 2, as Grid and Model take them.
