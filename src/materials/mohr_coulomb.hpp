@@ -1,7 +1,9 @@
 // Elastic-perfectly plastic Mohr-Coulomb with non-associated flow, a tension cut-off and optional
-// linear softening of c and phi with accumulated plastic shear strain (PHYSICS.md, "Mohr-Coulomb").
-// The return is made in principal stresses with the trial directions kept: to the face, to either
-// edge (triaxial compression s1 = s2, extension s2 = s3), to the apex, or to the tension planes.
+// linear softening of c and phi with accumulated plastic shear strain. The return is made in principal
+// stresses with the trial directions kept: to the face, to either edge (triaxial compression s1 = s2,
+// extension s2 = s3), to the apex, or to the tension planes. A return to the face alone, everywhere,
+// would leave stresses outside the yield surface near its edges and apex, where a slope's failing soil
+// (low confinement, tension crack) spends much of its time.
 #pragma once
 
 #include <Eigen/Core>
