@@ -84,9 +84,19 @@ TrailingOptions take_trailing_options(std::vector<std::string>& words) {
   return o;
 }
 
-}  // namespace
+// What the command line asks for, options written after the script included.
+struct CommandLine {
+  bool interactive = false, quiet = false, version = false, api_doc = false;
+  std::vector<std::string> chunks, sets;
+  int threads = 0;
+  std::string out;
+  std::string script;                    // FILE.lua, or "plot"
+  std::vector<std::string> script_args;  // the words after it
+};
 
-int main(int argc, char** argv) {
+// Parses argv into `cl`; returns an exit status when the program should stop now (help, a bad
+// option), -1 to go on.
+int parse_command_line(int argc, char** argv, CommandLine& cl) {
   CLI::App app{"seismpm: Material Point Method for seismic slope failure and landslide run-out.\n"
                "  seismpm                   interactive console\n"
                "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words; --set, --out,\n"
@@ -96,92 +106,103 @@ int main(int argc, char** argv) {
                "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy)",
                "seismpm"};
   app.prefix_command();  // everything after FILE.lua belongs to the script
-  bool interactive = false, quiet = false, version = false, api_doc = false;
-  std::vector<std::string> chunks, sets;
-  int threads = 0;
-  std::string out;
-  app.add_flag("-i,--interactive", interactive, "Enter the console after running FILE and chunks");
-  app.add_option("-e,--execute", chunks, "Run a Lua chunk (may repeat)")->allow_extra_args(false);
-  app.add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
-  app.add_option("--out", out, "Output directory in place of the script's default (mpm.out_dir)");
-  app.add_flag("--quiet", quiet, "No progress display");
-  app.add_option("--set", sets, "Scenario parameter name=value, read with mpm.param(name, default) (may repeat)")
+  app.add_flag("-i,--interactive", cl.interactive, "Enter the console after running FILE and chunks");
+  app.add_option("-e,--execute", cl.chunks, "Run a Lua chunk (may repeat)")->allow_extra_args(false);
+  app.add_option("--threads", cl.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  app.add_option("--out", cl.out, "Output directory in place of the script's default (mpm.out_dir)");
+  app.add_flag("--quiet", cl.quiet, "No progress display");
+  app.add_option("--set", cl.sets, "Scenario parameter name=value, read with mpm.param(name, default) (may repeat)")
       ->allow_extra_args(false);
-  app.add_flag("--version", version, "Print the version and exit");
-  app.add_flag("--api-doc", api_doc, "Print the Lua API reference (Markdown) and exit");
+  app.add_flag("--version", cl.version, "Print the version and exit");
+  app.add_flag("--api-doc", cl.api_doc, "Print the Lua API reference (Markdown) and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  if (version) {
-    std::printf("seismpm %s (Lua %s)\n", seismpm::lua::kVersion, seismpm::lua::Runtime::lua_version());
-    return 0;
-  }
-  if (api_doc) {
-    std::fputs(seismpm::lua::api_markdown().c_str(), stdout);
-    return 0;
-  }
   const std::vector<std::string> rest = app.remaining();
-  std::string script;
-  std::vector<std::string> script_args;
   if (!rest.empty()) {
-    script = rest.front();
-    script_args.assign(rest.begin() + 1, rest.end());
+    cl.script = rest.front();
+    cl.script_args.assign(rest.begin() + 1, rest.end());
   }
-  if (!script.empty() && script != "plot") {
-    const TrailingOptions trailing = take_trailing_options(script_args);
-    if (!trailing.error.empty()) {
-      std::fprintf(stderr, "seismpm: %s\n", trailing.error.c_str());
-      return 2;
-    }
-    sets.insert(sets.end(), trailing.sets.begin(), trailing.sets.end());
-    if (!trailing.out.empty()) out = trailing.out;
-    if (trailing.threads > 0) threads = trailing.threads;
-    quiet = quiet || trailing.quiet;
+  if (cl.script.empty() || cl.script == "plot") return -1;
+  const TrailingOptions trailing = take_trailing_options(cl.script_args);
+  if (!trailing.error.empty()) {
+    std::fprintf(stderr, "seismpm: %s\n", trailing.error.c_str());
+    return 2;
   }
-  if (threads > 0) omp_set_num_threads(threads);
+  cl.sets.insert(cl.sets.end(), trailing.sets.begin(), trailing.sets.end());
+  if (!trailing.out.empty()) cl.out = trailing.out;
+  if (trailing.threads > 0) cl.threads = trailing.threads;
+  cl.quiet = cl.quiet || trailing.quiet;
+  return -1;
+}
 
-  seismpm::lua::Session session;
-  for (const auto& s : sets) {
+// The session's parameters, output directory and progress mode; false (with a message) on a bad --set.
+bool fill_session(const CommandLine& cl, seismpm::lua::Session& session) {
+  for (const auto& s : cl.sets) {
     const auto eq = s.find('=');
     if (eq == std::string::npos || eq == 0) {
       std::fprintf(stderr, "seismpm: --set expects name=value, got '%s'\n", s.c_str());
-      return 2;
+      return false;
     }
     session.params[s.substr(0, eq)] = s.substr(eq + 1);
   }
-  session.out_dir = out;
-  session.progress = seismpm::Progress::detect(stderr, quiet);
+  session.out_dir = cl.out;
+  session.progress = seismpm::Progress::detect(stderr, cl.quiet);
+  return true;
+}
 
-  // seismpm plot DIR [quantities...]: plots of a finished run's probes.
-  if (script == "plot" && !std::filesystem::is_regular_file(script)) {
-    if (script_args.empty()) {
-      std::fprintf(stderr, "seismpm plot: give the output directory, e.g. seismpm plot out/shaking_table\n");
-      return 2;
-    }
-    std::vector<std::string> quantities(script_args.begin() + 1, script_args.end());
-    if (quantities.empty()) quantities = {"ux", "uy"};
-    try {
-      for (const auto& png : seismpm::plot_probes(script_args[0], quantities)) std::printf("wrote %s\n", png.c_str());
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "seismpm plot: %s\n", e.what());
-      return 1;
-    }
-    return 0;
+// seismpm plot DIR [quantities...]: plots of a finished run's probes.
+int plot_command(const std::vector<std::string>& args) {
+  if (args.empty()) {
+    std::fprintf(stderr, "seismpm plot: give the output directory, e.g. seismpm plot out/shaking_table\n");
+    return 2;
   }
+  std::vector<std::string> quantities(args.begin() + 1, args.end());
+  if (quantities.empty()) quantities = {"ux", "uy"};
+  try {
+    for (const auto& png : seismpm::plot_probes(args[0], quantities)) std::printf("wrote %s\n", png.c_str());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "seismpm plot: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
 
-  seismpm::lua::Runtime runtime(session, library_dirs(argv[0]));
+// The chunks, then the script, then (when asked, or when there was nothing to run) the console.
+int run_lua(const CommandLine& cl, seismpm::lua::Session& session, const char* argv0) {
+  seismpm::lua::Runtime runtime(session, library_dirs(argv0));
   seismpm::install_interrupt_handler(runtime);
   bool ok = true;
-  for (std::size_t i = 0; ok && i < chunks.size(); ++i) ok = runtime.run_string(chunks[i], "=(command line)");
-  if (ok && !script.empty()) {
-    if (!std::filesystem::is_regular_file(script)) {
-      std::fprintf(stderr, "seismpm: cannot open %s: no such file\n", script.c_str());
+  for (std::size_t i = 0; ok && i < cl.chunks.size(); ++i) ok = runtime.run_string(cl.chunks[i], "=(command line)");
+  if (ok && !cl.script.empty()) {
+    if (!std::filesystem::is_regular_file(cl.script)) {
+      std::fprintf(stderr, "seismpm: cannot open %s: no such file\n", cl.script.c_str());
       return 1;
     }
-    ok = runtime.run_file(script, script_args);
+    ok = runtime.run_file(cl.script, cl.script_args);
   }
-  if (interactive || (script.empty() && chunks.empty())) return seismpm::run_console(runtime);
+  if (cl.interactive || (cl.script.empty() && cl.chunks.empty())) return seismpm::run_console(runtime);
   return ok ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine cl;
+  if (const int status = parse_command_line(argc, argv, cl); status >= 0) return status;
+  if (cl.version) {
+    std::printf("seismpm %s (Lua %s)\n", seismpm::lua::kVersion, seismpm::lua::Runtime::lua_version());
+    return 0;
+  }
+  if (cl.api_doc) {
+    std::fputs(seismpm::lua::api_markdown().c_str(), stdout);
+    return 0;
+  }
+  if (cl.threads > 0) omp_set_num_threads(cl.threads);
+  seismpm::lua::Session session;
+  if (!fill_session(cl, session)) return 2;
+  if (cl.script == "plot" && !std::filesystem::is_regular_file(cl.script)) return plot_command(cl.script_args);
+  return run_lua(cl, session, argv[0]);
 }
