@@ -120,8 +120,9 @@ void bench_blocks(const Options& o) {
       for (int t : o.threads) {
         omp_set_num_threads(t);
         std::size_t particles = 0;
-        const double rate = median_rate(o, [&] { return OwnedModel{block(n, shape)}; },
-                                        [&](const Model<2>& m, int) { particles = m.particles().size(); });
+        const double rate = median_rate(
+            o, [&] { return OwnedModel{block(n, shape)}; },
+            [&](const Model<2>& m, int) { particles = m.particles().size(); });
         std::printf("%-8s %-10zu %8d %10.3f %14.3fM\n", std::string(to_string(shape)).c_str(), particles, t,
                     1e3 * particles / rate, rate / 1e6);
         std::fflush(stdout);
@@ -134,12 +135,14 @@ void bench_sand_column(const Options& o) {
   for (int t : o.threads) {
     omp_set_num_threads(t);
     std::size_t particles = 0, yielding = 0;
-    const double rate = median_rate(o, [&] { return OwnedModel{sand_column(o.profile)}; }, [&](const Model<2>& m, int r) {
-      particles = m.particles().size();
-      yielding = 0;
-      for (auto y : m.particles().yield) yielding += y;
-      if (o.profile && r == 0) print_stages(o, m);
-    });
+    const double rate = median_rate(
+        o, [&] { return OwnedModel{sand_column(o.profile)}; },
+        [&](const Model<2>& m, int r) {
+          particles = m.particles().size();
+          yielding = 0;
+          for (auto y : m.particles().yield) yielding += y;
+          if (o.profile && r == 0) print_stages(o, m);
+        });
     std::printf("%-8s %-10zu %8d %10.3f %14.3fM   (%zu particles yielding, no NaN)\n", "mc-sand", particles, t,
                 1e3 * particles / rate, rate / 1e6, yielding);
     std::fflush(stdout);
@@ -154,9 +157,9 @@ void bench_moving_base(const Options& o) {
     bool base;
     cases::BaseContact contact;
   };
-  for (const Variant& v : {Variant{"contact", true, cases::BaseContact::Friction},
-                           Variant{"glued", true, cases::BaseContact::None},
-                           Variant{"no-base", false, cases::BaseContact::None}}) {
+  for (const Variant& v :
+       {Variant{"contact", true, cases::BaseContact::Friction}, Variant{"glued", true, cases::BaseContact::None},
+        Variant{"no-base", false, cases::BaseContact::None}}) {
     for (int t : o.threads) {
       omp_set_num_threads(t);
       std::size_t particles = 0, shared = 0;
@@ -198,9 +201,10 @@ bool parse_options(int argc, char** argv, Options& o) {
     } else if (!std::strcmp(argv[i], "--sizes") && has_value) {
       o.sizes = parse_list(argv[++i]);
     } else {
-      std::fprintf(stderr,
-                   "usage: %s [--steps N] [--repeat R] [--threads \"1 2\"] [--sizes \"25000 50000 100000\"] [--profile]\n",
-                   argv[0]);
+      std::fprintf(
+          stderr,
+          "usage: %s [--steps N] [--repeat R] [--threads \"1 2\"] [--sizes \"25000 50000 100000\"] [--profile]\n",
+          argv[0]);
       return false;
     }
   }

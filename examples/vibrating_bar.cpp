@@ -24,8 +24,8 @@ int main(int argc, char** argv) {
   std::printf("seismpm: vibrating elastic bar (Sulsky et al. 1994), first mode, uGIMP, MUSL, FLIP\n");
   std::printf("  L = %g m, E = %g Pa, rho = %g kg/m3, v0 = %g m/s\n", bar.length, bar.young, bar.density, bar.v0);
   std::printf("  exact: period %.5f s, centre-of-mass velocity amplitude %.6f m/s\n\n", bar.period(), bar.amplitude());
-  std::printf("  %6s %10s %12s %10s %12s %10s %9s\n", "cells", "particles", "period (s)", "error", "amplitude",
-              "error", "wall (s)");
+  std::printf("  %6s %10s %12s %10s %12s %10s %9s\n", "cells", "particles", "period (s)", "error", "amplitude", "error",
+              "wall (s)");
   seismpm::cases::BarResult finest;
   for (int cells : {13, 25, 50, 100}) {
     bar.cells = cells;

@@ -17,19 +17,19 @@ namespace seismpm::cases {
 enum class BaseContact { None, Friction };
 
 struct MovingBaseBlock {
-  double cell = 0.1;                     // m
-  int ppc = 2;                           // block particles per cell per axis
-  double unit_weight = 10e3;             // N/m^3
-  double gravity = 9.81;                 // m/s^2
-  double young = 10e6;                   // Pa
+  double cell = 0.1;          // m
+  int ppc = 2;                // block particles per cell per axis
+  double unit_weight = 10e3;  // N/m^3
+  double gravity = 9.81;      // m/s^2
+  double young = 10e6;        // Pa
   double poisson = 0.3;
-  double base_speed = 2.0;               // m/s
+  double base_speed = 2.0;  // m/s
   BaseContact contact = BaseContact::Friction;
-  double friction = 0.3;                 // mu (0: smooth)
+  double friction = 0.3;  // mu (0: smooth)
   // The block settles under gravity as in the scenario: local damping 0.7 to equilibrium.
   GravityPhaseSettings settle{0.7, 0.005, 2.0};
   ShapeKind shape = ShapeKind::Gimp;
-  bool with_base = true;                 // false: the block alone (falls freely), for timing comparisons
+  bool with_base = true;  // false: the block alone (falls freely), for timing comparisons
   bool profile = false;
 
   double density() const { return unit_weight / gravity; }
@@ -66,7 +66,7 @@ struct MovingBaseBlock {
     b.block = m.add_body("block", ppc);
     m.fill_box(b.block, mat, Vec<2>(0.0, 0.0), Vec<2>(1.0, 1.0));
     std::array<std::shared_ptr<const History>, 2> rest = {std::make_shared<ConstantHistory>(0.0),
-                                                         std::make_shared<ConstantHistory>(0.0)};
+                                                          std::make_shared<ConstantHistory>(0.0)};
     if (with_base) {
       b.base = m.add_rigid_body("base", 1, 7850.0, rest);
       m.fill_box(b.base, -1, Vec<2>(-2.5, -cell), Vec<2>(2.0, 0.0));
@@ -80,8 +80,8 @@ struct MovingBaseBlock {
   // that the caller runs it on in the stretches it wants to look at.
   void settle_and_start(Built& b) const {
     b.simulation->gravity_phase(settle);
-    b.model->set_rigid_velocity(b.base, {std::make_shared<ConstantHistory>(base_speed),
-                                         std::make_shared<ConstantHistory>(0.0)});
+    b.model->set_rigid_velocity(
+        b.base, {std::make_shared<ConstantHistory>(base_speed), std::make_shared<ConstantHistory>(0.0)});
     b.simulation->dynamic_phase(0.0, 0.0);
   }
 };

@@ -16,11 +16,11 @@
 namespace seismpm::cases {
 
 struct VibratingBar {
-  double length = 25.0;   // m
-  double young = 100.0;   // Pa
-  double density = 1.0;   // kg/m^3
-  double v0 = 0.1;        // m/s
-  int cells = 25;         // cells along the bar
+  double length = 25.0;  // m
+  double young = 100.0;  // Pa
+  double density = 1.0;  // kg/m^3
+  double v0 = 0.1;       // m/s
+  int cells = 25;        // cells along the bar
   int ppc = 2;
   ShapeKind shape = ShapeKind::Gimp;
   Scheme scheme = Scheme::Musl;

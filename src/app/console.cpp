@@ -53,7 +53,7 @@ bool read_line(bool terminal, const char* prompt, std::string& line) {
 
 void install_interrupt_handler(lua::Runtime& runtime) {
   g_runtime = &runtime;
-  struct sigaction sa{};
+  struct sigaction sa {};
   sa.sa_handler = on_interrupt;
   sigemptyset(&sa.sa_mask);
   sigaction(SIGINT, &sa, nullptr);

@@ -97,14 +97,15 @@ struct CommandLine {
 // Parses argv into `cl`; returns an exit status when the program should stop now (help, a bad
 // option), -1 to go on.
 int parse_command_line(int argc, char** argv, CommandLine& cl) {
-  CLI::App app{"seismpm: Material Point Method for seismic slope failure and landslide run-out.\n"
-               "  seismpm                   interactive console\n"
-               "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words; --set, --out,\n"
-               "                            --threads, --quiet after FILE are options too)\n"
-               "  seismpm -i FILE.lua       run, then stay in the console\n"
-               "  seismpm -e 'lua code'     run a chunk\n"
-               "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy)",
-               "seismpm"};
+  CLI::App app{
+      "seismpm: Material Point Method for seismic slope failure and landslide run-out.\n"
+      "  seismpm                   interactive console\n"
+      "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words; --set, --out,\n"
+      "                            --threads, --quiet after FILE are options too)\n"
+      "  seismpm -i FILE.lua       run, then stay in the console\n"
+      "  seismpm -e 'lua code'     run a chunk\n"
+      "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy)",
+      "seismpm"};
   app.prefix_command();  // everything after FILE.lua belongs to the script
   app.add_flag("-i,--interactive", cl.interactive, "Enter the console after running FILE and chunks");
   app.add_option("-e,--execute", cl.chunks, "Run a Lua chunk (may repeat)")->allow_extra_args(false);

@@ -94,7 +94,8 @@ bool ContactFields<Dim>::prepare(const std::vector<Body>& bodies) {
   int fields = 1;
   for (int b = 0; b < n; ++b) {
     body_rigid_[b] = bodies[b].rigid;
-    const bool paired = std::any_of(pairs_.begin(), pairs_.end(), [&](const ContactPair& c) { return c.a == b || c.b == b; });
+    const bool paired =
+        std::any_of(pairs_.begin(), pairs_.end(), [&](const ContactPair& c) { return c.a == b || c.b == b; });
     if (bodies[b].rigid || paired) field_of_body_[b] = fields++;
   }
   if (fields > 32000) throw InputError("model: too many bodies in contact pairs");
@@ -406,12 +407,12 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
     }
 }
 
-#define SEISMPM_CONTACT_SHAPE(D, S)                                                                                 \
-  template void ContactFields<D>::mark_shared_nodes<S>(const Particles<D>&, const Grid<D>&,                       \
-                                                       const ParticleSupport<D>&, const StepContext&);            \
-  template void ContactFields<D>::particles_to_fields<S>(const Particles<D>&, const Grid<D>&,                     \
-                                                         const ParticleSupport<D>&, const Vec<D>&);               \
-  template void ContactFields<D>::remap_momentum<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, \
+#define SEISMPM_CONTACT_SHAPE(D, S)                                                                                    \
+  template void ContactFields<D>::mark_shared_nodes<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, \
+                                                       const StepContext&);                                            \
+  template void ContactFields<D>::particles_to_fields<S>(const Particles<D>&, const Grid<D>&,                          \
+                                                         const ParticleSupport<D>&, const Vec<D>&);                    \
+  template void ContactFields<D>::remap_momentum<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&,    \
                                                     double);
 SEISMPM_CONTACT_SHAPE(2, LinearShape)
 SEISMPM_CONTACT_SHAPE(2, GimpShape)

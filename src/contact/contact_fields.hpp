@@ -103,8 +103,8 @@ class ContactFields {
   ContactRules rules_;
   SharedNodes<Dim> shared_;
   std::vector<Vec<Dim>> slot_reaction_;  // per slot: force a rigid field gave this step
-  std::vector<FieldSet> cell_fields_;     // per cell: the contact fields of its particles
-  std::vector<char> near_shared_;         // per cell
+  std::vector<FieldSet> cell_fields_;    // per cell: the contact fields of its particles
+  std::vector<char> near_shared_;        // per cell
 };
 
 extern template class ContactFields<2>;

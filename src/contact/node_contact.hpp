@@ -103,8 +103,8 @@ void resolve_deformable_pairs(FieldGroups<Dim>& g, const NodeFields<Dim>& n, con
 // The Coulomb coefficient between group `a` and rigid field `r`; `glued` when any member of the group
 // has no contact declared with it.
 template <int Dim>
-double rigid_pair_friction(const FieldGroups<Dim>& g, const NodeFields<Dim>& n, const ContactRules& rules, int a,
-                           int r, bool& glued) {
+double rigid_pair_friction(const FieldGroups<Dim>& g, const NodeFields<Dim>& n, const ContactRules& rules, int a, int r,
+                           bool& glued) {
   glued = false;
   double mu = 0.0;
   for (int j = 0; j < n.count; ++j)
@@ -137,8 +137,8 @@ Vec<Dim> rigid_contact_normal(const FieldGroups<Dim>& g, const NodeFields<Dim>& 
 // Every group corrected against rigid field `r` once; adds the momentum per unit time it gave them to
 // force_on[r] (when dt > 0). Returns whether anything changed.
 template <int Dim>
-bool resolve_rigid_field(FieldGroups<Dim>& g, const NodeFields<Dim>& n, const ContactRules& rules, int r,
-                         double cell, double dt, Vec<Dim>* force_on) {
+bool resolve_rigid_field(FieldGroups<Dim>& g, const NodeFields<Dim>& n, const ContactRules& rules, int r, double cell,
+                         double dt, Vec<Dim>* force_on) {
   bool changed = false;
   const Vec<Dim>& v_r = n.velocity[r];
   for (int a = 0; a < n.count; ++a) {

@@ -15,7 +15,7 @@ namespace seismpm {
 template <int Dim>
 struct RigidMotion {
   std::array<std::shared_ptr<const History>, Dim> velocity;  // m/s per axis, read at the phase time
-  Vec<Dim> current = Vec<Dim>::Zero();  // the velocity of the last step (m/s)
+  Vec<Dim> current = Vec<Dim>::Zero();                       // the velocity of the last step (m/s)
   // Force the rigid body exerted on the deformable bodies over the last step (N; N/m in 2D), and its
   // time integral since the model was built (N s), for averages over output intervals.
   Vec<Dim> force = Vec<Dim>::Zero();

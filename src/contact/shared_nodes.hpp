@@ -54,17 +54,17 @@ class SharedNodes {
   int field_of_slot(int s) const { return present_[node_[s / kSlots]][s % kSlots]; }
 
   // Per slot (shared node k, slot j at k * kSlots + j).
-  std::vector<double> mass;            // deformable: sum N m; rigid: sum N V
-  std::vector<Vec<Dim>> momentum;      // deformable: sum N m v; rigid: sum N V v
-  std::vector<Vec<Dim>> force;         // deformable: internal + external
-  std::vector<Vec<Dim>> gradient;      // deformable: sum m grad N; rigid: sum V grad N
+  std::vector<double> mass;        // deformable: sum N m; rigid: sum N V
+  std::vector<Vec<Dim>> momentum;  // deformable: sum N m v; rigid: sum N V v
+  std::vector<Vec<Dim>> force;     // deformable: internal + external
+  std::vector<Vec<Dim>> gradient;  // deformable: sum m grad N; rigid: sum V grad N
   std::vector<Vec<Dim>> velocity;
   std::vector<Vec<Dim>> acceleration;
 
  private:
-  std::vector<FieldSet> present_;  // per grid node
-  std::vector<int> index_;                                  // per grid node
-  std::vector<int> node_, fields_;                          // per shared node
+  std::vector<FieldSet> present_;   // per grid node
+  std::vector<int> index_;          // per grid node
+  std::vector<int> node_, fields_;  // per shared node
 };
 
 extern template class SharedNodes<2>;

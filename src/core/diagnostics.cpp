@@ -82,12 +82,12 @@ Balance measure_balance(const Grid<Dim>& grid, const ContactFields<Dim>* contact
   return Balance{std::sqrt(u), std::sqrt(e)};
 }
 
-#define SEISMPM_DIAGNOSTICS(D)                                                                                    \
-  template double kinetic_energy<D>(const Particles<D>&, const std::vector<Body>&);                               \
-  template double strain_energy<D>(const Particles<D>&, const std::vector<Body>&, const MaterialConstants&);      \
-  template Vec<D> centroid<D>(const Particles<D>&, int);                                                          \
-  template Vec<D> momentum<D>(const Particles<D>&, const std::vector<Body>&);                                     \
-  template Balance measure_balance<D>(const Grid<D>&, const ContactFields<D>*, double, const Vec<D>&,             \
+#define SEISMPM_DIAGNOSTICS(D)                                                                               \
+  template double kinetic_energy<D>(const Particles<D>&, const std::vector<Body>&);                          \
+  template double strain_energy<D>(const Particles<D>&, const std::vector<Body>&, const MaterialConstants&); \
+  template Vec<D> centroid<D>(const Particles<D>&, int);                                                     \
+  template Vec<D> momentum<D>(const Particles<D>&, const std::vector<Body>&);                                \
+  template Balance measure_balance<D>(const Grid<D>&, const ContactFields<D>*, double, const Vec<D>&,        \
                                       std::vector<double>&);
 SEISMPM_DIAGNOSTICS(2)
 SEISMPM_DIAGNOSTICS(3)

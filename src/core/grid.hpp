@@ -24,7 +24,7 @@ class Grid {
   Grid(const Vec<Dim>& lower, const Vec<Dim>& upper, double cell, int ghost = 0);
 
   const Vec<Dim>& origin() const { return origin_; }  // the first node, ghost layers included
-  Vec<Dim> upper() const;                              // the last node
+  Vec<Dim> upper() const;                             // the last node
   // The user's domain: the grid without its ghost layers.
   Vec<Dim> domain_lower() const { return origin_.array() + ghost_ * h_; }
   Vec<Dim> domain_upper() const { return upper().array() - ghost_ * h_; }

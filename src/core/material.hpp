@@ -13,10 +13,10 @@ namespace seismpm {
 struct StressUpdate {
   const int* index = nullptr;
   int count = 0;
-  Sym* stress = nullptr;                   // in: old stress, already rotated objectively; out: new stress
-  const Sym* strain_increment = nullptr;   // dt * sym(L) of this step
-  double* plastic_strain = nullptr;        // model state: accumulated plastic shear strain
-  std::uint8_t* yield = nullptr;           // out: 1 where the update was plastic
+  Sym* stress = nullptr;                  // in: old stress, already rotated objectively; out: new stress
+  const Sym* strain_increment = nullptr;  // dt * sym(L) of this step
+  double* plastic_strain = nullptr;       // model state: accumulated plastic shear strain
+  std::uint8_t* yield = nullptr;          // out: 1 where the update was plastic
 };
 
 class Material {

@@ -185,24 +185,31 @@ void Model<Dim>::step_with(const StepContext& c) {
   timer_.start(settings_.profile);
   for (auto& f : fixes_) f->before_step(*this, c);
   if constexpr (Contact) prescribe_rigid_velocities(c);  // v_R(t) on the rigid particles
-  grid_.reset();                                             timer_.lap(Stage::Reset);
-  locate_particles<Shape>();                                 timer_.lap(Stage::Stencils);
+  grid_.reset();
+  timer_.lap(Stage::Reset);
+  locate_particles<Shape>();
+  timer_.lap(Stage::Stencils);
   if constexpr (Contact) {
     contact_.template mark_shared_nodes<Shape>(particles_, grid_, support_, c);
     timer_.lap(Stage::ContactFields);
   }
-  particles_to_grid<Shape, Contact>();                       timer_.lap(Stage::ParticlesToGrid);
-  nodal_forces<Contact>(c);                                  // balance measure, local damping
-  update_nodal_velocities<Contact>(c);                       // a = f/m, v^L = mv/m + dt a
-  constrain<Contact>(VelocityStage::Updated, c);             timer_.lap(Stage::Nodes);
-  grid_to_particles<Shape, Contact>(c);                      timer_.lap(Stage::GridToParticles);
-  if (settings_.scheme == Scheme::Musl) {                    // nodal velocity from the updated momentum
+  particles_to_grid<Shape, Contact>();
+  timer_.lap(Stage::ParticlesToGrid);
+  nodal_forces<Contact>(c);             // balance measure, local damping
+  update_nodal_velocities<Contact>(c);  // a = f/m, v^L = mv/m + dt a
+  constrain<Contact>(VelocityStage::Updated, c);
+  timer_.lap(Stage::Nodes);
+  grid_to_particles<Shape, Contact>(c);
+  timer_.lap(Stage::GridToParticles);
+  if (settings_.scheme == Scheme::Musl) {  // nodal velocity from the updated momentum
     remap_momentum<Shape, Contact>();
     constrain<Contact>(VelocityStage::Remapped, c);
   }
   timer_.lap(Stage::Remap);
-  update_stress<Shape, Contact>(c);                          timer_.lap(Stage::Stress);
-  finish_step(c);                                            timer_.lap(Stage::Checks);
+  update_stress<Shape, Contact>(c);
+  timer_.lap(Stage::Stress);
+  finish_step(c);
+  timer_.lap(Stage::Checks);
 }
 
 // The step's length and clock, from the CFL condition (or the fixed step) and the caller's limit.
@@ -243,7 +250,8 @@ template <int Dim>
 template <bool Contact>
 void Model<Dim>::nodal_forces(const StepContext& c) {
   if (measure_balance_)
-    balance_ = measure_balance(grid_, Contact ? &contact_ : nullptr, mass_threshold_, settings_.gravity, balance_scratch_);
+    balance_ =
+        measure_balance(grid_, Contact ? &contact_ : nullptr, mass_threshold_, settings_.gravity, balance_scratch_);
   for (auto& f : fixes_) f->nodal_forces(*this, c);
 }
 

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "body.hpp"
-#include "diagnostics.hpp"
 #include "contact/contact_fields.hpp"
+#include "diagnostics.hpp"
 #include "fix.hpp"
 #include "grid.hpp"
 #include "material.hpp"
@@ -30,14 +30,14 @@ template <int Dim>
 struct ModelSettings {
   Vec<Dim> lower = Vec<Dim>::Zero();
   Vec<Dim> upper = Vec<Dim>::Ones();
-  double cell = 0.1;                       // m
+  double cell = 0.1;  // m
   ShapeKind shape = ShapeKind::Gimp;
   Scheme scheme = Scheme::Musl;
-  Vec<Dim> gravity = Vec<Dim>::Zero();     // m/s^2
-  double cfl = 0.4;                        // dt = cfl h / max(c_p + |v_p|)
-  double flip = 1.0;                       // 1 = FLIP, 0 = PIC
-  double fixed_dt = 0.0;                   // > 0 overrides the CFL time step (s)
-  int sort_every = 20;                     // steps between sorting particles by cell
+  Vec<Dim> gravity = Vec<Dim>::Zero();  // m/s^2
+  double cfl = 0.4;                     // dt = cfl h / max(c_p + |v_p|)
+  double flip = 1.0;                    // 1 = FLIP, 0 = PIC
+  double fixed_dt = 0.0;                // > 0 overrides the CFL time step (s)
+  int sort_every = 20;                  // steps between sorting particles by cell
   // Average the volumetric strain increment over each cell (B-bar style): removes the volumetric
   // locking that isochoric plastic flow (psi = 0) and near-incompressibility cause in low-order cells.
   bool cell_volumetric_strain = true;
@@ -51,7 +51,7 @@ struct ModelSettings {
   // the elastic law resists closing what opened freely, so every load cycle opens the soil further
   // (ratcheting dilation: a shaking-table slope doubled its volume at the wall).
   bool crack_closure = true;
-  bool profile = false;                    // time each stage of the step (Model::stage_times)
+  bool profile = false;  // time each stage of the step (Model::stage_times)
 };
 
 template <int Dim>
@@ -203,7 +203,7 @@ class Model {
   // Per-step scratch.
   ParticleSupport<Dim> support_;
   std::vector<Sym> strain_increment_;
-  std::vector<Eigen::Vector3d> spin_;   // dt skw(L) as (w_xy, w_yz, w_xz)
+  std::vector<Eigen::Vector3d> spin_;  // dt skw(L) as (w_xy, w_yz, w_xz)
   std::vector<double> cell_volume_, cell_dilation_;
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;
@@ -219,10 +219,11 @@ class Model {
 
 // Calls X(Dim, Shape, Contact) and Y(Dim, Contact) for every variant of the step, to instantiate the
 // stages that the step's files define.
-#define SEISMPM_FOR_EACH_STEP_VARIANT(X, Y)                                                      \
-  X(2, LinearShape, false) X(2, LinearShape, true) X(2, GimpShape, false) X(2, GimpShape, true) \
-  X(3, LinearShape, false) X(3, LinearShape, true) X(3, GimpShape, false) X(3, GimpShape, true) \
-  Y(2, false) Y(2, true) Y(3, false) Y(3, true)
+#define SEISMPM_FOR_EACH_STEP_VARIANT(X, Y)                                                                   \
+  X(2, LinearShape, false)                                                                                    \
+  X(2, LinearShape, true) X(2, GimpShape, false) X(2, GimpShape, true) X(3, LinearShape, false)               \
+      X(3, LinearShape, true) X(3, GimpShape, false) X(3, GimpShape, true) Y(2, false) Y(2, true) Y(3, false) \
+          Y(3, true)
 
 extern template class Model<2>;
 extern template class Model<3>;

@@ -19,7 +19,9 @@ struct Interval {
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false, or_zero = false;
 
-  constexpr bool bounded() const { return lo > -std::numeric_limits<double>::infinity() || hi < std::numeric_limits<double>::infinity(); }
+  constexpr bool bounded() const {
+    return lo > -std::numeric_limits<double>::infinity() || hi < std::numeric_limits<double>::infinity();
+  }
   bool contains(double v) const {
     if (or_zero && v == 0.0) return true;
     return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
@@ -33,7 +35,9 @@ constexpr Interval at_least(double lo) { return {lo, std::numeric_limits<double>
 constexpr Interval closed(double lo, double hi) { return {lo, hi, false, false, false}; }
 constexpr Interval closed_open(double lo, double hi) { return {lo, hi, false, true, false}; }
 constexpr Interval open_closed(double lo, double hi) { return {lo, hi, true, false, false}; }
-constexpr Interval zero_or_at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, false, true}; }
+constexpr Interval zero_or_at_least(double lo) {
+  return {lo, std::numeric_limits<double>::infinity(), false, false, true};
+}
 
 // Shortest text of a number as messages show it (6 significant digits: 1e-06, 0.5, 1837.6).
 inline std::string number_text(double v) {
@@ -75,7 +79,8 @@ class ParameterError : public InputError {
 // (with any note, "degrees, at most friction") and v.
 inline double check_parameter(const std::string& name, double v, const Interval& range, const std::string& unit = "") {
   if (range.contains(v)) return v;
-  throw ParameterError({name}, "must be " + range.text() + (unit.empty() ? "" : " (" + unit + ")") + ", got " + number_text(v));
+  throw ParameterError({name},
+                       "must be " + range.text() + (unit.empty() ? "" : " (" + unit + ")") + ", got " + number_text(v));
 }
 
 }  // namespace seismpm

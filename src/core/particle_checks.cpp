@@ -35,8 +35,8 @@ void Model<Dim>::check_particles() const {
   }
   if (bad < n) {
     std::ostringstream os;
-    os << "has a non-finite or invalid state (velocity " << format_point<Dim>(P.v[bad]) << ", volume "
-       << P.volume[bad] << ")";
+    os << "has a non-finite or invalid state (velocity " << format_point<Dim>(P.v[bad]) << ", volume " << P.volume[bad]
+       << ")";
     fail(bad, os.str());
   }
 #pragma omp parallel for schedule(static) reduction(min : bad)

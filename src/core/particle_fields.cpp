@@ -51,22 +51,49 @@ double equivalent_shear_strain(const Sym& e) { return std::sqrt(2.0 / 3.0 * dev_
 template <int Dim>
 void quantity_value(const Particles<Dim>& p, std::size_t i, Quantity q, double* out) {
   switch (q) {
-    case Quantity::Position: return vector3<Dim>(p.x[i], out);
-    case Quantity::Id: out[0] = p.id[i]; return;
-    case Quantity::Body: out[0] = p.body[i]; return;
-    case Quantity::Material: out[0] = p.material[i]; return;
-    case Quantity::Mass: out[0] = p.mass[i]; return;
-    case Quantity::Volume: out[0] = p.volume[i]; return;
-    case Quantity::Density: out[0] = p.density(i); return;
-    case Quantity::Displacement: return vector3<Dim>(p.u[i], out);
-    case Quantity::Velocity: return vector3<Dim>(p.v[i], out);
-    case Quantity::Stress: return tensor6(p.stress[i], out);
-    case Quantity::Strain: return tensor6(p.strain[i], out);
-    case Quantity::Pressure: out[0] = pressure(p.stress[i]); return;
-    case Quantity::Q: out[0] = von_mises(p.stress[i]); return;
-    case Quantity::ShearStrain: out[0] = equivalent_shear_strain(p.strain[i]); return;
-    case Quantity::PlasticStrain: out[0] = p.plastic_strain[i]; return;
-    case Quantity::Yield: out[0] = p.yield[i]; return;
+    case Quantity::Position:
+      return vector3<Dim>(p.x[i], out);
+    case Quantity::Id:
+      out[0] = p.id[i];
+      return;
+    case Quantity::Body:
+      out[0] = p.body[i];
+      return;
+    case Quantity::Material:
+      out[0] = p.material[i];
+      return;
+    case Quantity::Mass:
+      out[0] = p.mass[i];
+      return;
+    case Quantity::Volume:
+      out[0] = p.volume[i];
+      return;
+    case Quantity::Density:
+      out[0] = p.density(i);
+      return;
+    case Quantity::Displacement:
+      return vector3<Dim>(p.u[i], out);
+    case Quantity::Velocity:
+      return vector3<Dim>(p.v[i], out);
+    case Quantity::Stress:
+      return tensor6(p.stress[i], out);
+    case Quantity::Strain:
+      return tensor6(p.strain[i], out);
+    case Quantity::Pressure:
+      out[0] = pressure(p.stress[i]);
+      return;
+    case Quantity::Q:
+      out[0] = von_mises(p.stress[i]);
+      return;
+    case Quantity::ShearStrain:
+      out[0] = equivalent_shear_strain(p.strain[i]);
+      return;
+    case Quantity::PlasticStrain:
+      out[0] = p.plastic_strain[i];
+      return;
+    case Quantity::Yield:
+      out[0] = p.yield[i];
+      return;
   }
 }
 

@@ -22,8 +22,22 @@ namespace seismpm {
 // the position are written as one VTU point-data array each, in this order (the position is the
 // points themselves).
 enum class Quantity {
-  Position, Id, Body, Material, Mass, Volume, Density, Displacement, Velocity, Stress, Strain,
-  Pressure, Q, ShearStrain, PlasticStrain, Yield
+  Position,
+  Id,
+  Body,
+  Material,
+  Mass,
+  Volume,
+  Density,
+  Displacement,
+  Velocity,
+  Stress,
+  Strain,
+  Pressure,
+  Q,
+  ShearStrain,
+  PlasticStrain,
+  Yield
 };
 
 struct QuantityInfo {
@@ -32,8 +46,8 @@ struct QuantityInfo {
   // 1 for a scalar; 3 for a vector (x, y, z; z = 0 in 2D); 6 for a symmetric tensor in VTK's order
   // xx, yy, zz, xy, yz, xz (the order of Sym).
   int components;
-  bool integer;           // written as a VTK integer array (ids and flags), else as doubles
-  bool vtu_array;         // written as a point-data array
+  bool integer;    // written as a VTK integer array (ids and flags), else as doubles
+  bool vtu_array;  // written as a point-data array
   // SI; in 2D mass and volume are per metre out of plane ("-": dimensionless or a count).
   std::string_view unit;
   std::string_view meaning;
@@ -60,18 +74,40 @@ inline constexpr QuantityInfo kQuantities[] = {
 };
 
 enum class Field {
-  Id, Body, Material, Mass, Volume, Density,
-  X, Y, Z, Ux, Uy, Uz, Vx, Vy, Vz,
-  Sxx, Syy, Szz, Sxy, Syz, Sxz,
-  Pressure, Q, ShearStrain, PlasticStrain, Yield
+  Id,
+  Body,
+  Material,
+  Mass,
+  Volume,
+  Density,
+  X,
+  Y,
+  Z,
+  Ux,
+  Uy,
+  Uz,
+  Vx,
+  Vy,
+  Vz,
+  Sxx,
+  Syy,
+  Szz,
+  Sxy,
+  Syz,
+  Sxz,
+  Pressure,
+  Q,
+  ShearStrain,
+  PlasticStrain,
+  Yield
 };
 
 struct FieldInfo {
   Field field;
   std::string_view name;  // Lua's name and the CSV column's suffix
   Quantity quantity;
-  int component;          // within the quantity (its VTU array)
-  int min_dim;            // 3: a field of 3D models only
+  int component;  // within the quantity (its VTU array)
+  int min_dim;    // 3: a field of 3D models only
 };
 
 // Rows in the order of the enum (checked below), which is the output order.

@@ -11,14 +11,14 @@ namespace seismpm {
 
 template <int Dim>
 struct Particles {
-  std::vector<Vec<Dim>> x;        // position (m)
-  std::vector<Vec<Dim>> u;        // displacement since the last reset (m)
-  std::vector<Vec<Dim>> v;        // velocity (m/s)
-  std::vector<double> mass;       // kg (per metre out of plane in 2D)
-  std::vector<double> volume;     // m^3 (m^2 per metre in 2D)
-  std::vector<double> half_width; // uGIMP half-width l in cell units, fixed at creation
-  std::vector<Sym> stress;        // Cauchy stress (Pa), tension positive
-  std::vector<Sym> strain;        // total strain since the last reset
+  std::vector<Vec<Dim>> x;             // position (m)
+  std::vector<Vec<Dim>> u;             // displacement since the last reset (m)
+  std::vector<Vec<Dim>> v;             // velocity (m/s)
+  std::vector<double> mass;            // kg (per metre out of plane in 2D)
+  std::vector<double> volume;          // m^3 (m^2 per metre in 2D)
+  std::vector<double> half_width;      // uGIMP half-width l in cell units, fixed at creation
+  std::vector<Sym> stress;             // Cauchy stress (Pa), tension positive
+  std::vector<Sym> strain;             // total strain since the last reset
   std::vector<double> plastic_strain;  // accumulated plastic shear strain
   std::vector<std::uint8_t> yield;     // 1 when the last update was plastic
   std::vector<Vec<Dim>> normal;        // rigid particles: outward unit normal of their body's nearest face (else 0)
@@ -29,16 +29,20 @@ struct Particles {
   // Calls f(member) for every per-particle vector above: the one list that add and permute
   // go through, so a new member is its declaration plus its entry here.
   template <class F>
-  void for_each_member(F&& f) { visit_members(*this, f); }
+  void for_each_member(F&& f) {
+    visit_members(*this, f);
+  }
   template <class F>
-  void for_each_member(F&& f) const { visit_members(*this, f); }
+  void for_each_member(F&& f) const {
+    visit_members(*this, f);
+  }
 
   std::size_t size() const { return x.size(); }
   double density(std::size_t p) const { return mass[p] / volume[p]; }
 
   // Appends a stress-free particle at rest; returns its index.
-  std::size_t add(const Vec<Dim>& position, double particle_mass, double particle_volume,
-                  double particle_half_width, int body_index, int material_index);
+  std::size_t add(const Vec<Dim>& position, double particle_mass, double particle_volume, double particle_half_width,
+                  int body_index, int material_index);
 
   // Reorders every field so that new index k holds old particle order[k].
   void permute(const std::vector<int>& order);
@@ -49,8 +53,20 @@ struct Particles {
  private:
   template <class Self, class F>
   static void visit_members(Self& s, F& f) {
-    f(s.x); f(s.u); f(s.v); f(s.mass); f(s.volume); f(s.half_width); f(s.stress); f(s.strain);
-    f(s.plastic_strain); f(s.yield); f(s.normal); f(s.id); f(s.body); f(s.material);
+    f(s.x);
+    f(s.u);
+    f(s.v);
+    f(s.mass);
+    f(s.volume);
+    f(s.half_width);
+    f(s.stress);
+    f(s.strain);
+    f(s.plastic_strain);
+    f(s.yield);
+    f(s.normal);
+    f(s.id);
+    f(s.body);
+    f(s.material);
   }
 };
 

@@ -117,8 +117,7 @@ bool PolygonRegion::contains(const Vec<2>& x) const {
     const Vec<2>&a = vertices_[i], &b = vertices_[j];
     // On an edge: inside.
     if (orientation(a, b, x) == 0 && on_segment(a, b, x)) return true;
-    if ((a[1] > x[1]) != (b[1] > x[1]) && x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0])
-      inside = !inside;
+    if ((a[1] > x[1]) != (b[1] > x[1]) && x[0] < (b[0] - a[0]) * (x[1] - a[1]) / (b[1] - a[1]) + a[0]) inside = !inside;
   }
   return inside;
 }
@@ -134,7 +133,8 @@ PolylineRegion::PolylineRegion(std::vector<Vec<2>> points, double thickness, Sid
   if (points_.size() < 2) throw InputError("polyline needs at least 2 points");
   if (!(thickness > 0.0) || !std::isfinite(thickness)) throw InputError("polyline thickness must be > 0 (m)");
   for (std::size_t i = 0; i + 1 < points_.size(); ++i)
-    if ((points_[i + 1] - points_[i]).norm() == 0.0) throw InputError("polyline repeats point " + std::to_string(i + 1));
+    if ((points_[i + 1] - points_[i]).norm() == 0.0)
+      throw InputError("polyline repeats point " + std::to_string(i + 1));
   bounding_box(points_, side == Side::Both ? 0.5 * thickness : thickness, lower_, upper_);
 }
 
@@ -165,9 +165,12 @@ bool PolylineRegion::contains(const Vec<2>& x) const {
 Vec<2> PolylineRegion::outward_normal(const Vec<2>& x) const {
   // A one-sided band's contact face is the line itself: every particle of it faces the free side.
   switch (side_) {
-    case Side::Right: return nearest(x).left;
-    case Side::Left: return -nearest(x).left;
-    case Side::Both: break;
+    case Side::Right:
+      return nearest(x).left;
+    case Side::Left:
+      return -nearest(x).left;
+    case Side::Both:
+      break;
   }
   return Vec<2>::Zero();
 }

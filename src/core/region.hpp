@@ -65,7 +65,7 @@ class PolylineRegion : public Region {
  private:
   struct Nearest {
     double distance = std::numeric_limits<double>::infinity();
-    double side = 0.0;            // > 0 on the left of the nearest segment
+    double side = 0.0;             // > 0 on the left of the nearest segment
     Vec<2> left = Vec<2>::Zero();  // that segment's unit normal to its left
   };
   Nearest nearest(const Vec<2>& x) const;

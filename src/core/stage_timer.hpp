@@ -9,12 +9,23 @@
 
 namespace seismpm {
 
-enum class Stage { Reset, Stencils, ContactFields, ParticlesToGrid, Nodes, GridToParticles, Remap, Stress, Checks, Count };
+enum class Stage {
+  Reset,
+  Stencils,
+  ContactFields,
+  ParticlesToGrid,
+  Nodes,
+  GridToParticles,
+  Remap,
+  Stress,
+  Checks,
+  Count
+};
 
 inline const char* stage_name(Stage s) {
-  static constexpr const char* kNames[] = {"reset",      "stencils",          "contact fields",
-                                           "particles to grid", "nodes", "grid to particles",
-                                           "MUSL re-map", "stress",           "checks and sorting"};
+  static constexpr const char* kNames[] = {
+      "reset",       "stencils", "contact fields",    "particles to grid", "nodes", "grid to particles",
+      "MUSL re-map", "stress",   "checks and sorting"};
   return kNames[static_cast<int>(s)];
 }
 

@@ -12,9 +12,9 @@ namespace seismpm {
 
 template <int Dim, int K>
 struct Stencil {
-  int base;            // linear index of the first node
-  double w[Dim][K];    // per-axis weights
-  double dw[Dim][K];   // per-axis derivatives (1/m)
+  int base;           // linear index of the first node
+  double w[Dim][K];   // per-axis weights
+  double dw[Dim][K];  // per-axis derivatives (1/m)
 };
 
 // True while the particle's centre lies in the grid's domain (edges included, ghost layers not).

@@ -157,7 +157,7 @@ void Model<Dim>::rebuild_material_lists() {
 #define SEISMPM_STRESS(D, S, C)                                    \
   template void Model<D>::update_stress<S, C>(const StepContext&); \
   template void Model<D>::velocity_gradients<S, C>(const StepContext&);
-#define SEISMPM_STRESS_CELLS(D, C)                            \
+#define SEISMPM_STRESS_CELLS(D, C)                        \
   template void Model<D>::average_volumetric_strain<C>(); \
   template void Model<D>::rotate_close_and_update_volume<C>();
 SEISMPM_FOR_EACH_STEP_VARIANT(SEISMPM_STRESS, SEISMPM_STRESS_CELLS)

@@ -126,12 +126,11 @@ void Model<Dim>::remap_momentum() {
   });
   const double eps = mass_threshold_;
 #pragma omp parallel for schedule(static)
-  for (int i = 0; i < nn; ++i)
-    G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
+  for (int i = 0; i < nn; ++i) G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
   if constexpr (Contact) contact_.template remap_momentum<Shape>(P, G, support_, eps);
 }
 
-#define SEISMPM_TRANSFERS(D, S, C)                                   \
+#define SEISMPM_TRANSFERS(D, S, C)                                     \
   template void Model<D>::particles_to_grid<S, C>();                   \
   template void Model<D>::grid_to_particles<S, C>(const StepContext&); \
   template void Model<D>::remap_momentum<S, C>();

@@ -20,16 +20,13 @@ using Sym = Eigen::Matrix<double, 6, 1>;
 
 inline Mat3 to_matrix(const Sym& s) {
   Mat3 m;
-  m << s[0], s[3], s[5],
-       s[3], s[1], s[4],
-       s[5], s[4], s[2];
+  m << s[0], s[3], s[5], s[3], s[1], s[4], s[5], s[4], s[2];
   return m;
 }
 
 inline Sym to_voigt(const Mat3& m) {
   Sym s;
-  s << m(0, 0), m(1, 1), m(2, 2), 0.5 * (m(0, 1) + m(1, 0)), 0.5 * (m(1, 2) + m(2, 1)),
-      0.5 * (m(0, 2) + m(2, 0));
+  s << m(0, 0), m(1, 1), m(2, 2), 0.5 * (m(0, 1) + m(1, 0)), 0.5 * (m(1, 2) + m(2, 1)), 0.5 * (m(0, 2) + m(2, 0));
   return s;
 }
 

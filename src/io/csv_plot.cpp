@@ -29,13 +29,13 @@ void plot_csv(const CsvPlot& p) {
   if (p.y.empty()) throw InputError("cannot plot: no y columns given");
   std::ostringstream plot;
   if (!p.color.empty()) {
-    plot << "set size ratio -1\nset cblabel " << gnuplot_quote(p.color) << "\nset palette rgb 33,13,10\nplot " << gnuplot_quote(p.csv)
-         << " every ::1 using " << xc << ':' << column(p.y.front()) << ':' << column(p.color)
+    plot << "set size ratio -1\nset cblabel " << gnuplot_quote(p.color) << "\nset palette rgb 33,13,10\nplot "
+         << gnuplot_quote(p.csv) << " every ::1 using " << xc << ':' << column(p.y.front()) << ':' << column(p.color)
          << " with points pt 7 ps 0.35 palette notitle";
   } else {
     for (std::size_t k = 0; k < p.y.size(); ++k)
-      plot << (k ? ", \\\n     " : "plot ") << gnuplot_quote(p.csv) << " every ::1 using " << xc << ':' << column(p.y[k])
-           << " with lines lw 2 title " << gnuplot_quote(p.y[k]);
+      plot << (k ? ", \\\n     " : "plot ") << gnuplot_quote(p.csv) << " every ::1 using " << xc << ':'
+           << column(p.y[k]) << " with lines lw 2 title " << gnuplot_quote(p.y[k]);
   }
   std::ostringstream script;
   script << "set terminal pngcairo size 960,540 noenhanced font 'sans,11'\n"

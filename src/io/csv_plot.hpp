@@ -9,10 +9,10 @@
 namespace seismpm {
 
 struct CsvPlot {
-  std::string csv;                  // input file, header line first
-  std::string png;                  // output file (written atomically)
-  std::string x;                    // column for the horizontal axis
-  std::vector<std::string> y;       // columns drawn against it, one curve each
+  std::string csv;             // input file, header line first
+  std::string png;             // output file (written atomically)
+  std::string x;               // column for the horizontal axis
+  std::vector<std::string> y;  // columns drawn against it, one curve each
   std::string title, xlabel, ylabel;
   // When set: one point per row at (x, y[0]) coloured by this column, equal axis scales (a picture of
   // particles, e.g. displacement over the slope).

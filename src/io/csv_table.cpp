@@ -56,8 +56,8 @@ CsvColumns read_csv_columns(const std::string& file, const std::vector<std::stri
         if (found < 0) {
           std::string have;
           for (const auto& h : header) have += (have.empty() ? "" : ", ") + h;
-          throw InputError(file + ":" + std::to_string(number) + ": no column '" + name + "' in the header (columns: " +
-                           have + ")");
+          throw InputError(file + ":" + std::to_string(number) + ": no column '" + name +
+                           "' in the header (columns: " + have + ")");
         }
         index.push_back(found);
       }

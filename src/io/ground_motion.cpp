@@ -67,8 +67,10 @@ AccelerationRecord read_at2(const std::string& file) {
       if (c == ',' || c == '=') c = ' ';
     std::istringstream is(s);
     for (std::string word; is >> word;) {
-      if (word == "NPTS") is >> npts;
-      else if (word == "DT") is >> dt;
+      if (word == "NPTS")
+        is >> npts;
+      else if (word == "DT")
+        is >> dt;
     }
   }
   if (npts <= 1 || !(dt > 0.0) || !std::isfinite(dt))
@@ -118,7 +120,8 @@ AccelerationRecord read_acceleration_columns(const std::string& file, double to_
     }
     if (cells.size() < 2) throw InputError(where(file, number) + "expected two columns: time, acceleration");
     if (!numeric)
-      throw InputError(where(file, number) + "not a number: '" + (parse_number(cells[0], t) ? cells[1] : cells[0]) + "'");
+      throw InputError(where(file, number) + "not a number: '" + (parse_number(cells[0], t) ? cells[1] : cells[0]) +
+                       "'");
     header_allowed = false;
     r.t.push_back(t);
     r.a.push_back(a * to_si);

@@ -19,9 +19,9 @@ namespace seismpm {
 
 struct OutputSettings {
   std::string dir;
-  double every = 0.1;                          // s of simulated time between writes (> 0)
+  double every = 0.1;  // s of simulated time between writes (> 0)
   std::vector<VtuArray> arrays = all_vtu_arrays();
-  bool grid = false;                           // also write the active grid nodes
+  bool grid = false;  // also write the active grid nodes
 };
 
 template <int Dim>

@@ -45,8 +45,8 @@ std::string Progress::line(double t, long step, double dt, const std::string& ex
   const double eta = done > 0 ? wall * (1.0 - done) / done : NAN;
   char buf[256];
   std::snprintf(buf, sizeof buf, "[%s] t = %.4g %s %.4g s  step %ld  dt %.3g s  %.3gM p-steps/s  ETA %s%s%s%s",
-                label_.c_str(), t, open_end_ ? "/ at most" : "/", t_end_, step, dt, rate / 1e6,
-                open_end_ ? "<= " : "", clock_text(eta).c_str(), extra.empty() ? "" : "  ", extra.c_str());
+                label_.c_str(), t, open_end_ ? "/ at most" : "/", t_end_, step, dt, rate / 1e6, open_end_ ? "<= " : "",
+                clock_text(eta).c_str(), extra.empty() ? "" : "  ", extra.c_str());
   return buf;
 }
 

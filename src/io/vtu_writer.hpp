@@ -36,8 +36,9 @@ void write_particles_vtu(const std::string& path, const Particles<Dim>& particle
 }
 
 template <int Dim>
-void write_particles_vtu(const std::string& path, const Particles<Dim>& particles, const std::vector<std::size_t>& index,
-                         const std::vector<VtuArray>& arrays, const VtuMeta& meta);
+void write_particles_vtu(const std::string& path, const Particles<Dim>& particles,
+                         const std::vector<std::size_t>& index, const std::vector<VtuArray>& arrays,
+                         const VtuMeta& meta);
 
 // Grid nodes that carry mass: nodal mass, velocity and fixity flags.
 template <int Dim>

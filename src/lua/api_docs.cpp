@@ -33,22 +33,33 @@ std::string type_text(const Key& k) {
   const std::string range = k.range_text ? k.range_text : k.range.text();
   const std::string ranged = range.empty() ? "" : " " + range;
   switch (k.type) {
-    case Type::Number: return with_unit("number" + ranged, k);
-    case Type::Integer: return with_unit("whole number" + ranged, k);
-    case Type::String: return "string";
-    case Type::Boolean: return "true | false";
-    case Type::Choice: return quoted_choices(k.choices, " | ", "", "");
-    case Type::Point: return with_unit("{x, y}", k);
-    case Type::Names: return "list of names {\"a\", ...}";
+    case Type::Number:
+      return with_unit("number" + ranged, k);
+    case Type::Integer:
+      return with_unit("whole number" + ranged, k);
+    case Type::String:
+      return "string";
+    case Type::Boolean:
+      return "true | false";
+    case Type::Choice:
+      return quoted_choices(k.choices, " | ", "", "");
+    case Type::Point:
+      return with_unit("{x, y}", k);
+    case Type::Names:
+      return "list of names {\"a\", ...}";
     case Type::Table: {
       std::string s = "table {";
       for (std::size_t i = 0; i < k.keys.size(); ++i) s += std::string(i ? ", " : " ") + k.keys[i].name;
       return s + " }";
     }
-    case Type::Object: return std::string("a ") + k.object;
-    case Type::Function: return "function";
-    case Type::Custom: return with_unit(k.type_text, k);
-    case Type::Positional: return "entries 1..n";
+    case Type::Object:
+      return std::string("a ") + k.object;
+    case Type::Function:
+      return "function";
+    case Type::Custom:
+      return with_unit(k.type_text, k);
+    case Type::Positional:
+      return "entries 1..n";
   }
   return "";
 }
@@ -98,8 +109,8 @@ std::string call_of(const Function& f) {
   const std::string name = f.name;
   const auto colon = name.find(':');
   if (colon == std::string::npos) return name;
-  static const std::map<std::string, std::string> kReceivers = {
-      {"model", "m"}, {"body", "b"}, {"probe", "p"}, {"history", "h"}, {"shape", "s"}, {"material", "mat"}};
+  static const std::map<std::string, std::string> kReceivers = {{"model", "m"},   {"body", "b"},  {"probe", "p"},
+                                                                {"history", "h"}, {"shape", "s"}, {"material", "mat"}};
   const auto it = kReceivers.find(name.substr(0, colon));
   return (it == kReceivers.end() ? name.substr(0, colon) : it->second) + name.substr(colon);
 }

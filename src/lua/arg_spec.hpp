@@ -14,15 +14,15 @@
 namespace seismpm::lua {
 
 enum class Type {
-  Number,      // a finite number, checked against `range`
-  Integer,     // a whole number, checked against `range`
+  Number,   // a finite number, checked against `range`
+  Integer,  // a whole number, checked against `range`
   String,
   Boolean,
-  Choice,      // one of the strings in `choices` ("gimp|linear")
-  Point,       // {x, y}
-  Names,       // a non-empty list of strings {"ux", "uy"}
-  Table,       // a table of named arguments of its own, described by `keys`
-  Object,      // a userdata of Lua type `object` ("material", "body")
+  Choice,  // one of the strings in `choices` ("gimp|linear")
+  Point,   // {x, y}
+  Names,   // a non-empty list of strings {"ux", "uy"}
+  Table,   // a table of named arguments of its own, described by `keys`
+  Object,  // a userdata of Lua type `object` ("material", "body")
   Function,
   Custom,      // read by the binding itself (a domain, a velocity); `type_text` says what it is
   Positional,  // the entries 1..n of the table; `name` shows them ("{x, y}, {x, y}, ...")
@@ -31,10 +31,10 @@ enum class Type {
 struct Key {
   const char* name = "";
   Type type = Type::Number;
-  const char* doc = "";                 // one line: what the key means
-  const char* unit = "";                // "m", "Pa", "degrees"
-  bool mandatory = false;               // required: no default
-  double number = std::numeric_limits<double>::quiet_NaN();  // default of a Number or Integer
+  const char* doc = "";                                               // one line: what the key means
+  const char* unit = "";                                              // "m", "Pa", "degrees"
+  bool mandatory = false;                                             // required: no default
+  double number = std::numeric_limits<double>::quiet_NaN();           // default of a Number or Integer
   double point[2] = {std::numeric_limits<double>::quiet_NaN(), 0.0};  // default of a Point
   const char* text = nullptr;           // default of a String or Choice; of Names as "ux|uy"
   const char* shown_default = nullptr;  // describes a default that no value states ("from cfl", "unchanged")
@@ -47,15 +47,48 @@ struct Key {
   std::span<const Key> keys{};          // Table
 
   // Modifiers, so that a table reads as one line per key: arg::number("cell", "m", "cell size").in(above(0)).required()
-  constexpr Key required() const { Key k = *this; k.mandatory = true; return k; }
-  constexpr Key def(double v) const { Key k = *this; k.number = v; return k; }
-  constexpr Key def_point(double x, double y) const { Key k = *this; k.point[0] = x; k.point[1] = y; return k; }
-  constexpr Key def_text(const char* v) const { Key k = *this; k.text = v; return k; }
-  constexpr Key shown(const char* about) const { Key k = *this; k.shown_default = about; return k; }
-  constexpr Key in(Interval r) const { Key k = *this; k.range = r; return k; }
-  constexpr Key in_text(const char* t) const { Key k = *this; k.range_text = t; return k; }
+  constexpr Key required() const {
+    Key k = *this;
+    k.mandatory = true;
+    return k;
+  }
+  constexpr Key def(double v) const {
+    Key k = *this;
+    k.number = v;
+    return k;
+  }
+  constexpr Key def_point(double x, double y) const {
+    Key k = *this;
+    k.point[0] = x;
+    k.point[1] = y;
+    return k;
+  }
+  constexpr Key def_text(const char* v) const {
+    Key k = *this;
+    k.text = v;
+    return k;
+  }
+  constexpr Key shown(const char* about) const {
+    Key k = *this;
+    k.shown_default = about;
+    return k;
+  }
+  constexpr Key in(Interval r) const {
+    Key k = *this;
+    k.range = r;
+    return k;
+  }
+  constexpr Key in_text(const char* t) const {
+    Key k = *this;
+    k.range_text = t;
+    return k;
+  }
   // The kernel checks `r`: the help shows it, Args leaves it to the kernel.
-  constexpr Key checked_by_kernel(Interval r) const { Key k = in(r); k.forwarded = true; return k; }
+  constexpr Key checked_by_kernel(Interval r) const {
+    Key k = in(r);
+    k.forwarded = true;
+    return k;
+  }
   constexpr bool has_number_default() const { return number == number; }  // not NaN
   constexpr bool has_point_default() const { return point[0] == point[0]; }
 };
@@ -110,13 +143,13 @@ constexpr Key positional(const char* shown, const char* doc) { return key(shown,
 
 // A function of the API as help() and docs/lua-api.md show it.
 struct Function {
-  const char* name;             // where it is registered and what help("...") takes: "mpm.model", "model:run"
-  lua_CFunction fn;             // guarded<...>; nullptr for functions of the Lua library (lua/seismpm.lua)
-  const char* call;             // the whole signature ("m:step(n = 1)") when it takes no table; nullptr:
-                                // the name, a method's object abbreviated ("m:run{ ... }")
-  std::span<const Key> keys;    // its table of named arguments; empty when it takes none
+  const char* name;           // where it is registered and what help("...") takes: "mpm.model", "model:run"
+  lua_CFunction fn;           // guarded<...>; nullptr for functions of the Lua library (lua/seismpm.lua)
+  const char* call;           // the whole signature ("m:step(n = 1)") when it takes no table; nullptr:
+                              // the name, a method's object abbreviated ("m:run{ ... }")
+  std::span<const Key> keys;  // its table of named arguments; empty when it takes none
   const char* summary;
-  const char* example;          // a line of Lua
+  const char* example;  // a line of Lua
 };
 
 }  // namespace seismpm::lua

@@ -61,7 +61,7 @@ void Args::reject_unknown_keys(const std::vector<std::string>& known, bool posit
   const lua_Integer n = positional ? static_cast<lua_Integer>(lua_rawlen(L_, index_)) : 0;
   lua_pushnil(L_);
   while (lua_next(L_, index_) != 0) {  // raw traversal
-    lua_pop(L_, 1);                     // the value; the key stays for the next lua_next
+    lua_pop(L_, 1);                    // the value; the key stays for the next lua_next
     std::string key;
     bool ok = false;
     if (lua_type(L_, -1) == LUA_TSTRING) {  // never lua_tostring on a number key: it would change the key
@@ -109,13 +109,27 @@ void Args::check(const Key& k) const {
     return;
   }
   switch (k.type) {
-    case Type::Number: optional_number(k.name); break;
-    case Type::Integer: integer(k.name, 0); break;
-    case Type::String: string(k.name); break;
-    case Type::Boolean: boolean(k.name, false); break;
-    case Type::Choice: choice(k.name, split(k.choices), ""); break;
-    case Type::Point: point(k.name); break;
-    case Type::Names: names(k.name); break;
+    case Type::Number:
+      optional_number(k.name);
+      break;
+    case Type::Integer:
+      integer(k.name, 0);
+      break;
+    case Type::String:
+      string(k.name);
+      break;
+    case Type::Boolean:
+      boolean(k.name, false);
+      break;
+    case Type::Choice:
+      choice(k.name, split(k.choices), "");
+      break;
+    case Type::Point:
+      point(k.name);
+      break;
+    case Type::Names:
+      names(k.name);
+      break;
     case Type::Table: {
       push(k.name);
       read_top(L_, [&] { return Args(L_, -1, k.keys, k.name).index(); });
@@ -129,7 +143,8 @@ void Args::check(const Key& k) const {
       }
       lua_pop(L_, 1);
       break;
-    default: break;
+    default:
+      break;
   }
 }
 
@@ -171,7 +186,8 @@ std::optional<double> Args::optional_number(const char* key) const {
     if (!std::isfinite(v)) throw Error(context() + quoted(key) + " must be a finite number, got " + number_text(v));
     const Key& k = spec(key);
     if (!k.forwarded && k.range.bounded() && !k.range.contains(v))
-      throw Error(context() + quoted(key) + " must be " + k.range.text() + unit_suffix(k.unit) + ", got " + number_text(v));
+      throw Error(context() + quoted(key) + " must be " + k.range.text() + unit_suffix(k.unit) + ", got " +
+                  number_text(v));
     return v;
   });
 }
@@ -210,7 +226,9 @@ std::string Args::string(const char* key) const {
   });
 }
 
-std::string Args::string(const char* key, const std::string& fallback) const { return has(key) ? string(key) : fallback; }
+std::string Args::string(const char* key, const std::string& fallback) const {
+  return has(key) ? string(key) : fallback;
+}
 
 std::string Args::choice(const char* key, const std::vector<std::string>& allowed, const std::string& fallback) const {
   std::string list;
@@ -219,7 +237,8 @@ std::string Args::choice(const char* key, const std::vector<std::string>& allowe
   const std::string got = t == LUA_TSTRING ? "'" + std::string(lua_tostring(L_, -1)) + "'" : type_name(L_, -1);
   lua_pop(L_, 1);
   if (t == LUA_TNIL && fallback.empty()) throw Error(context() + "missing " + quoted(key));
-  if (t != LUA_TNIL && t != LUA_TSTRING) throw Error(context() + quoted(key) + " must be one of " + list + ", got " + got);
+  if (t != LUA_TNIL && t != LUA_TSTRING)
+    throw Error(context() + quoted(key) + " must be one of " + list + ", got " + got);
   const std::string v = t == LUA_TNIL ? fallback : got.substr(1, got.size() - 2);
   for (const auto& a : allowed)
     if (a == v) return v;
@@ -269,7 +288,8 @@ std::optional<std::vector<std::string>> Args::names(const char* key) const {
   }
   return read_top(L_, [&] {
     if (!lua_istable(L_, -1))
-      throw Error(context() + quoted(key) + " must be a list of names such as {\"ux\", \"uy\"}, got " + type_name(L_, -1));
+      throw Error(context() + quoted(key) + " must be a list of names such as {\"ux\", \"uy\"}, got " +
+                  type_name(L_, -1));
     std::vector<std::string> out;
     const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L_, -1));
     for (lua_Integer i = 1; i <= n; ++i) {

@@ -58,10 +58,10 @@ class Args {
   int index() const { return index_; }
 
  private:
-  const Key& spec(const char* key) const;   // throws std::logic_error for a key the description lacks
+  const Key& spec(const char* key) const;  // throws std::logic_error for a key the description lacks
   void reject_unknown_keys(const std::vector<std::string>& known, bool positional) const;
   void check(const Key& k) const;
-  std::string context() const;               // "key 'softening': " inside a nested table
+  std::string context() const;  // "key 'softening': " inside a nested table
 
   lua_State* L_;
   int index_;

@@ -56,7 +56,8 @@ std::string push_home(lua_State* L, const std::string& name) {
 }  // namespace
 
 std::string script_message(const std::exception& e) {
-  if (const auto* p = dynamic_cast<const ParameterError*>(&e)) return (p->names().size() > 1 ? "keys " : "key ") + std::string(e.what());
+  if (const auto* p = dynamic_cast<const ParameterError*>(&e))
+    return (p->names().size() > 1 ? "keys " : "key ") + std::string(e.what());
   return e.what();
 }
 

@@ -129,7 +129,6 @@ T& object_argument(const Args& a, const char* key) {
   return obj;
 }
 
-
 // A particle field name at `index` (body:field, probe:get); the error lists the names.
 Field field_argument(lua_State* L, int index);
 

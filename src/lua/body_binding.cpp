@@ -118,19 +118,31 @@ int body_reaction(lua_State* L) {
 const Function kBody[] = {
     {"body:name", &guarded<body_name>, "b:name()", {}, "The body's name.", "print(soil:name())"},
     {"body:count", &guarded<body_count>, "b:count()", {}, "Number of particles of the body.", "print(soil:count())"},
-    {"body:centroid", &guarded<body_centroid>, "b:centroid()", {}, "Mass centre {x, y} (m).",
+    {"body:centroid",
+     &guarded<body_centroid>,
+     "b:centroid()",
+     {},
+     "Mass centre {x, y} (m).",
      "local c = soil:centroid(); print(c[1], c[2])"},
-    {"body:field", &guarded<body_field>, "b:field(name)", {},
+    {"body:field",
+     &guarded<body_field>,
+     "b:field(name)",
+     {},
      "A particle field as a Lua array in particle creation order. Fields: id body material mass volume density x y "
      "ux uy vx vy sxx syy szz sxy pressure q shear_strain plastic_strain yield (SI units, stress tension-positive, "
      "pressure compression-positive).",
      "local uy = soil:field(\"uy\"); print(#uy, uy[1])"},
-    {"body:set_velocity", &guarded<body_set_velocity>,
-     "b:set_velocity{vx, vy} | b:set_velocity(function(x, y) return vx, vy end)", {},
+    {"body:set_velocity",
+     &guarded<body_set_velocity>,
+     "b:set_velocity{vx, vy} | b:set_velocity(function(x, y) return vx, vy end)",
+     {},
      "Sets the particles' velocity (m/s), uniform or as a function of position. For a rigid body: {vx, vy} with "
      "numbers or histories replaces the velocity it follows from the next step on.",
      "bar:set_velocity(function(x, y) return 0.1 * math.sin(math.pi * x / 50), 0 end)"},
-    {"body:reaction", &guarded<body_reaction>, "r:reaction()", {},
+    {"body:reaction",
+     &guarded<body_reaction>,
+     "r:reaction()",
+     {},
      "For a rigid body: the force {fx, fy} it exerted on the deformable bodies in the last step (N per metre out "
      "of plane; a base carrying soil reads its weight, upward). The output directory's reactions.csv holds its "
      "mean over each output interval.",

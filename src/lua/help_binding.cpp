@@ -90,7 +90,10 @@ int help(lua_State* L) {
 }
 
 const Function kHelp[] = {
-    {"help", &guarded<help>, "help() | help(object) | help(\"name\")", {},
+    {"help",
+     &guarded<help>,
+     "help() | help(object) | help(\"name\")",
+     {},
      "Lists the API, or shows the documentation and an example of one function (its keys with types, ranges, "
      "units and defaults) or of an object's methods.",
      "help(mpm.model); help(m); help(\"model:run\")"},

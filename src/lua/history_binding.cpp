@@ -19,8 +19,10 @@ namespace {
 
 const Key kTableKeys[] = {arg::positional("{t, v}, {t, v}, ...", "the points: times (s) must increase")};
 const Key kCsvKeys[] = {
-    arg::string("file", "the CSV file; a relative one not found from the current directory is looked for next to "
-                        "the script").required(),
+    arg::string("file",
+                "the CSV file; a relative one not found from the current directory is looked for next to "
+                "the script")
+        .required(),
     arg::string("time", "the column of times (s)").def_text("t"),
     arg::string("value", "the column of values").required(),
     arg::number("scale", "", "factor on the values").def(1),
@@ -72,8 +74,8 @@ int history_csv(lua_State* L) {
   auto c = read_csv_columns(file, {a.string("time"), a.string("value")});
   for (std::size_t k = 1; k < c.columns[0].size(); ++k)
     if (!(c.columns[0][k] > c.columns[0][k - 1]))
-      throw Error(file + ":" + std::to_string(c.lines[k]) + ": times must increase (" + std::to_string(c.columns[0][k]) +
-                  " after " + std::to_string(c.columns[0][k - 1]) + ")");
+      throw Error(file + ":" + std::to_string(c.lines[k]) + ": times must increase (" +
+                  std::to_string(c.columns[0][k]) + " after " + std::to_string(c.columns[0][k - 1]) + ")");
   for (auto& t : c.columns[0]) t += shift;
   for (auto& v : c.columns[1]) v *= scale;
   auto history = std::make_shared<TableHistory>(std::move(c.columns[0]), std::move(c.columns[1]), file);
@@ -84,7 +86,8 @@ int history_csv(lua_State* L) {
 // The table behind a history, for the calls that need one.
 const TableHistory& table_of(lua_State* L, const char* what) {
   const auto* t = dynamic_cast<const TableHistory*>(self<HistoryObject>(L).history.get());
-  if (!t) throw Error(std::string(what) + " needs a tabulated history (table, csv or record), not a function or constant");
+  if (!t)
+    throw Error(std::string(what) + " needs a tabulated history (table, csv or record), not a function or constant");
   return *t;
 }
 
@@ -107,7 +110,8 @@ int history_duration(lua_State* L) {
 
 int history_write_csv(lua_State* L) {
   const auto& t = table_of(L, "write_csv");
-  if (lua_type(L, 2) != LUA_TSTRING) throw Error("expects a file name (a string)");  // before lua_tostring converts numbers
+  if (lua_type(L, 2) != LUA_TSTRING)
+    throw Error("expects a file name (a string)");  // before lua_tostring converts numbers
   const char* file = lua_tostring(L, 2);
   std::ostringstream os;
   os.precision(10);
@@ -118,7 +122,8 @@ int history_write_csv(lua_State* L) {
 }
 
 // The record's velocity (or acceleration), and what tostring(h) reports about it.
-std::vector<double> record_values(const AccelerationRecord& record, bool velocity, Baseline baseline, std::ostringstream& about) {
+std::vector<double> record_values(const AccelerationRecord& record, bool velocity, Baseline baseline,
+                                  std::ostringstream& about) {
   if (!velocity) return record.a;
   const auto raw = integrate_record(record, Baseline::None);
   const auto cor = integrate_record(record, baseline);
@@ -134,7 +139,8 @@ std::vector<double> record_values(const AccelerationRecord& record, bool velocit
 int history_at2(lua_State* L) {
   const Args a(L, 1, kAt2Keys);
   const std::string file = data_path(L, a.string("file"));
-  const bool is_at2 = file.size() > 4 && (file.substr(file.size() - 4) == ".AT2" || file.substr(file.size() - 4) == ".at2");
+  const bool is_at2 =
+      file.size() > 4 && (file.substr(file.size() - 4) == ".AT2" || file.substr(file.size() - 4) == ".at2");
   const std::string format = a.choice("format", is_at2 ? "at2" : "columns");
   const std::string units = a.choice("units");
   if (format == "at2" && units != "g") throw Error("key 'units': AT2 files are in g");
@@ -169,7 +175,10 @@ const Function kHistory[] = {
      "A history from two named columns of a CSV file with a header line; '#' lines are skipped. Errors name the "
      "file and line.",
      "local vx = mpm.history.csv{ file = \"data/table_velocity.csv\", time = \"t\", value = \"vx\" }"},
-    {"mpm.history.fn", &guarded<history_fn>, "mpm.history.fn(function(t) return value end)", {},
+    {"mpm.history.fn",
+     &guarded<history_fn>,
+     "mpm.history.fn(function(t) return value end)",
+     {},
      "A history computed by a Lua function of time (s), called when the history is read (protected: an error, a "
      "yield or a value that is not a number stops the call with an error naming t).",
      "local vx = mpm.history.fn(function(t) return 0.1 * math.sin(2 * math.pi * 3 * t) end)"},
@@ -179,12 +188,24 @@ const Function kHistory[] = {
      "correction. Errors name the file and line.",
      "local table = mpm.history.at2{ file = \"data/TCU068-E.AT2\", baseline = \"linear\", scale = 0.5 }"},
     {"history:at", &guarded<history_at>, "h:at(t)", {}, "The history's value at time t (s).", "print(vx:at(0.5))"},
-    {"history:peak", &guarded<history_peak>, "h:peak()", {}, "The largest |value| of a tabulated history.",
+    {"history:peak",
+     &guarded<history_peak>,
+     "h:peak()",
+     {},
+     "The largest |value| of a tabulated history.",
      "print(vx:peak())"},
-    {"history:duration", &guarded<history_duration>, "h:duration()", {}, "Time from the first to the last point (s).",
+    {"history:duration",
+     &guarded<history_duration>,
+     "h:duration()",
+     {},
+     "Time from the first to the last point (s).",
      "print(vx:duration())"},
-    {"history:write_csv", &guarded<history_write_csv>, "h:write_csv(file)", {},
-     "Writes the points as t,value (atomically).", "vx:write_csv(\"out/table_velocity.csv\")"},
+    {"history:write_csv",
+     &guarded<history_write_csv>,
+     "h:write_csv(file)",
+     {},
+     "Writes the points as t,value (atomically).",
+     "vx:write_csv(\"out/table_velocity.csv\")"},
 };
 
 }  // namespace

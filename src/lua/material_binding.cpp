@@ -17,24 +17,40 @@ const Key kDensity = arg::number("density", "kg/m3", "mass density").checked_by_
 const Key kYoung = arg::number("young", "Pa", "Young's modulus").checked_by_kernel(kYoungRange).required();
 const Key kPoisson = arg::number("poisson", "", "Poisson's ratio").checked_by_kernel(kPoissonRange).required();
 const Key kCohesion = arg::number("cohesion", "Pa", "cohesion c").checked_by_kernel(kCohesionRange).def(0);
-const Key kFriction =
-    arg::number("friction", "degrees", "friction angle phi (not both c and phi zero)").checked_by_kernel(kFrictionRange).required();
-const Key kDilation =
-    arg::number("dilation", "degrees", "dilation angle psi (0: no volume change in plastic flow)").in_text("in [0, friction]").def(0);
+const Key kFriction = arg::number("friction", "degrees", "friction angle phi (not both c and phi zero)")
+                          .checked_by_kernel(kFrictionRange)
+                          .required();
+const Key kDilation = arg::number("dilation", "degrees", "dilation angle psi (0: no volume change in plastic flow)")
+                          .in_text("in [0, friction]")
+                          .def(0);
 
 const Key kLinearElasticKeys[] = {kDensity, kYoung, kPoisson};
 const Key kSofteningKeys[] = {
     arg::number("cohesion", "Pa", "residual cohesion").in_text("in [0, cohesion]").shown("cohesion (not softened)"),
-    arg::number("friction", "degrees", "residual friction angle").in_text("in [0, friction]").shown("friction (not softened)"),
-    arg::number("strain", "", "accumulated plastic shear strain at which the residual values are reached").in(above(0)).required(),
+    arg::number("friction", "degrees", "residual friction angle")
+        .in_text("in [0, friction]")
+        .shown("friction (not softened)"),
+    arg::number("strain", "", "accumulated plastic shear strain at which the residual values are reached")
+        .in(above(0))
+        .required(),
 };
 const Key kMohrCoulombKeys[] = {
-    kDensity, kYoung, kPoisson, kCohesion, kFriction, kDilation,
+    kDensity,
+    kYoung,
+    kPoisson,
+    kCohesion,
+    kFriction,
+    kDilation,
     arg::number("tension", "Pa", "tensile strength (0: none)").in_text("in [0, c cot(phi)]").def(0),
     arg::table("softening", kSofteningKeys, "linear softening of c and phi with accumulated plastic shear strain"),
 };
 const Key kDruckerPragerKeys[] = {
-    kDensity, kYoung, kPoisson, kCohesion, kFriction, kDilation,
+    kDensity,
+    kYoung,
+    kPoisson,
+    kCohesion,
+    kFriction,
+    kDilation,
     arg::number("tension", "Pa", "limit of the mean stress (0: no tension)").in_text("in [0, the cone's apex]").def(0),
     arg::choice("fit", "plane_strain|outer|inner", "plane_strain",
                 "how the cone fits Mohr-Coulomb: the same plane-strain limit load, or through its compression "
@@ -127,7 +143,12 @@ const Function kMaterial[] = {
      "Drucker-Prager fitted to Mohr-Coulomb's c, phi, psi, with a tension cut-off on the mean stress.",
      "local sand = mpm.material.drucker_prager{ density = 2650, young = 8.4e5, poisson = 0.3, friction = 19.8, "
      "fit = \"plane_strain\" }"},
-    {"material:kind", &guarded<material_kind>, "mat:kind()", {}, "The constitutive model's name.", "print(rock:kind())"},
+    {"material:kind",
+     &guarded<material_kind>,
+     "mat:kind()",
+     {},
+     "The constitutive model's name.",
+     "print(rock:kind())"},
 };
 
 }  // namespace

@@ -39,10 +39,12 @@ void read_domain(const Args& a, ModelSettings<2>& s) {
   lua_State* L = a.state();
   a.push("domain");
   const int domain = lua_gettop(L);  // left on the stack: it goes when the function returns
-  if (!lua_istable(L, domain)) throw Error("key 'domain' must be {{x0, y0}, {x1, y1}} (m), got " + type_name(L, domain));
+  if (!lua_istable(L, domain))
+    throw Error("key 'domain' must be {{x0, y0}, {x1, y1}} (m), got " + type_name(L, domain));
   if (lua_rawlen(L, domain) != 2) throw Error("key 'domain' must hold 2 corner points {{x0, y0}, {x1, y1}}");
   lua_rawgeti(L, domain, 1);
-  if (lua_istable(L, -1) && lua_rawlen(L, -1) == 3) throw Error("3D models are not available from Lua yet (domain has 3 coordinates)");
+  if (lua_istable(L, -1) && lua_rawlen(L, -1) == 3)
+    throw Error("3D models are not available from Lua yet (domain has 3 coordinates)");
   s.lower = to_point(L, -1, "domain corner 1");
   lua_rawgeti(L, domain, 2);
   s.upper = to_point(L, -1, "domain corner 2");
@@ -76,8 +78,8 @@ const Model<2>& model_of(lua_State* L) { return self<ModelObject>(L).handle->mod
 int model_tostring(lua_State* L) {
   const auto& m = model_of(L);
   std::ostringstream os;
-  os << "model: " << m.grid().domain_cells(0) << " x " << m.grid().domain_cells(1) << " cells of " << m.grid().cell() << " m, "
-     << m.bodies().size() << " bodies, " << m.particles().size() << " particles, t = " << m.time() << " s";
+  os << "model: " << m.grid().domain_cells(0) << " x " << m.grid().domain_cells(1) << " cells of " << m.grid().cell()
+     << " m, " << m.bodies().size() << " bodies, " << m.particles().size() << " particles, t = " << m.time() << " s";
   lua_pushstring(L, os.str().c_str());
   return 1;
 }
@@ -129,13 +131,24 @@ const Function kModel[] = {
      "local m = mpm.model{ domain = {{0, 0}, {1, 0.6}}, cell = 0.01, shape = \"gimp\" }"},
     {"model:time", &guarded<model_time>, "m:time()", {}, "Simulated time (s), total across phases.", "print(m:time())"},
     {"model:steps", &guarded<model_steps>, "m:steps()", {}, "Number of steps taken.", "print(m:steps())"},
-    {"model:dt", &guarded<model_dt>, "m:dt()", {},
-     "The last time step (s), or the one the CFL condition allows before the first step.", "print(m:dt())"},
-    {"model:energy", &guarded<model_energy>, "m:energy()", {},
+    {"model:dt",
+     &guarded<model_dt>,
+     "m:dt()",
+     {},
+     "The last time step (s), or the one the CFL condition allows before the first step.",
+     "print(m:dt())"},
+    {"model:energy",
+     &guarded<model_energy>,
+     "m:energy()",
+     {},
      "Kinetic and elastic strain energy (J per metre out of plane) as a table { kinetic =, strain = }.",
      "local e = m:energy(); print(e.kinetic, e.strain)"},
     {"model:count", &guarded<model_count>, "m:count()", {}, "Number of particles in the model.", "print(m:count())"},
-    {"model:bodies", &guarded<model_bodies>, "m:bodies()", {}, "The bodies as a table by name.",
+    {"model:bodies",
+     &guarded<model_bodies>,
+     "m:bodies()",
+     {},
+     "The bodies as a table by name.",
      "for name, b in pairs(m:bodies()) do print(name, b:count()) end"},
 };
 

@@ -64,9 +64,9 @@ std::string body_name_argument(const Args& a, const ModelHandle& h, const char* 
 }
 
 void fill_region(ModelHandle& h, int body, int material, const Region& region, int ppc) {
-  const std::size_t added =
-      h.model.fill(body, material, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); },
-                   [&](const Vec<2>& x) { return region.outward_normal(x); });
+  const std::size_t added = h.model.fill(
+      body, material, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); },
+      [&](const Vec<2>& x) { return region.outward_normal(x); });
   if (added == 0)
     throw Error("key 'shape': " + region.describe() + " holds no particle at ppc = " + std::to_string(ppc) +
                 " (smaller than a particle spacing of " + std::to_string(h.model.grid().cell() / ppc) + " m?)");
@@ -124,7 +124,8 @@ int model_contact(lua_State* L) {
   const auto handle = self<ModelObject>(L).handle;
   const Args a(L, 2, kContactKeys);
   const auto body = body_pair(a, handle, "m:contact{ body_a, body_b, friction = mu } (bodies in contact)");
-  handle->model.add_contact(body[0], body[1], a.number("friction"));  // names the bodies of a pair declared twice or with itself
+  handle->model.add_contact(body[0], body[1],
+                            a.number("friction"));  // names the bodies of a pair declared twice or with itself
   return 0;
 }
 

@@ -91,7 +91,10 @@ const Function kOutputFunctions[] = {
      "end of each run, listed with their times in particles.pvd (open that one in ParaView); probes.csv with every "
      "field of every probe.",
      "m:output{ dir = \"out/slope\", every = 0.1, probe_every = 0.01 }"},
-    {"model:write", &guarded<model_write>, "m:write()", {},
+    {"model:write",
+     &guarded<model_write>,
+     "m:write()",
+     {},
      "Writes the current state to the output directory now (particles, rigid bodies, probes, reactions), unless "
      "it is on file already; for scripts that run in chunks with at_run_end = false.",
      "m:write()"},

@@ -33,9 +33,12 @@ const Key kDynamicKeys[] = {
 const Key kGravityKeys[] = {
     arg::number("damping", "", "local damping coefficient alpha").in(closed_open(0, 1)).def(kGravity.damping),
     arg::number("tolerance", "", "of both equilibrium ratios").in(closed_open(1e-12, 1)).def(kGravity.tolerance),
-    arg::number("max_time", "s", "simulated time before the phase fails with an error").in(above(0)).def(kGravity.max_time),
-    arg::number("k0", "", "first set sigma_v = rho g depth and sigma_h = k0 sigma_v, then settle (none: settle from "
-                          "the current stresses)")
+    arg::number("max_time", "s", "simulated time before the phase fails with an error")
+        .in(above(0))
+        .def(kGravity.max_time),
+    arg::number("k0", "",
+                "first set sigma_v = rho g depth and sigma_h = k0 sigma_v, then settle (none: settle from "
+                "the current stresses)")
         .in(open_closed(0, 3))
         .shown("none"),
 };
@@ -153,10 +156,18 @@ const Function kPhases[] = {
      "starts at zero now (so a record starts when the shaking starts). Phases can follow each other in any number; "
      "m:run{ duration } continues the current phase without restarting its clock. every and call: as for m:run.",
      "m:dynamic_phase{ duration = 14, every = 0.5, call = function(m) print(m:phase_time()) end }"},
-    {"model:phase_time", &guarded<model_phase_time>, "m:phase_time()", {},
-     "Time since the current phase started (s); m:time() is the total.", "print(m:phase_time(), m:time())"},
-    {"model:phase", &guarded<model_phase>, "m:phase()", {},
-     "The current phase's name: \"run\" before any phase, \"gravity\" or \"dynamic\".", "print(m:phase())"},
+    {"model:phase_time",
+     &guarded<model_phase_time>,
+     "m:phase_time()",
+     {},
+     "Time since the current phase started (s); m:time() is the total.",
+     "print(m:phase_time(), m:time())"},
+    {"model:phase",
+     &guarded<model_phase>,
+     "m:phase()",
+     {},
+     "The current phase's name: \"run\" before any phase, \"gravity\" or \"dynamic\".",
+     "print(m:phase())"},
 };
 
 }  // namespace

@@ -26,7 +26,8 @@ int plot(lua_State* L) {
   p.csv = a.string("file");
   p.x = a.string("x");
   p.y = *a.names("y");
-  const std::string stem = p.csv.size() > 4 && p.csv.substr(p.csv.size() - 4) == ".csv" ? p.csv.substr(0, p.csv.size() - 4) : p.csv;
+  const std::string stem =
+      p.csv.size() > 4 && p.csv.substr(p.csv.size() - 4) == ".csv" ? p.csv.substr(0, p.csv.size() - 4) : p.csv;
   p.png = a.string("png", stem + ".png");
   p.title = a.string("title");
   p.xlabel = a.string("xlabel");

@@ -50,10 +50,18 @@ int probe_series(lua_State* L) {
 
 const Function kProbe[] = {
     {"probe:name", &guarded<probe_name>, "p:name()", {}, "The probe's name.", "print(p1:name())"},
-    {"probe:get", &guarded<probe_get>, "p:get(field)", {}, "The current value of a field of the probe's particle.",
+    {"probe:get",
+     &guarded<probe_get>,
+     "p:get(field)",
+     {},
+     "The current value of a field of the probe's particle.",
      "print(p1:get(\"uy\"))"},
-    {"probe:series", &guarded<probe_series>, "p:series(field)", {},
-     "The recorded history: two arrays, times (s) and values.", "local t, uy = p1:series(\"uy\")"},
+    {"probe:series",
+     &guarded<probe_series>,
+     "p:series(field)",
+     {},
+     "The recorded history: two arrays, times (s) and values.",
+     "local t, uy = p1:series(\"uy\")"},
 };
 
 }  // namespace

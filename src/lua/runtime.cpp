@@ -63,12 +63,18 @@ int out_dir(lua_State* L) {
 }
 
 const Function kSession[] = {
-    {"mpm.param", &guarded<param>, "mpm.param(name, default)", {},
+    {"mpm.param",
+     &guarded<param>,
+     "mpm.param(name, default)",
+     {},
      "A scenario parameter: the value given on the command line with --set name=value, converted to the type of "
      "default (number, boolean or string), or default when not given.",
      "local cell = mpm.param(\"cell\", 0.01)"},
     {"mpm.version", &guarded<version>, "mpm.version()", {}, "The seismpm version as a string.", "print(mpm.version())"},
-    {"mpm.out_dir", &guarded<out_dir>, "mpm.out_dir(default)", {},
+    {"mpm.out_dir",
+     &guarded<out_dir>,
+     "mpm.out_dir(default)",
+     {},
      "The output directory: the one given with --out, or default. --out replaces such defaults only: m:output "
      "writes into the dir it is given, so a script that honours --out passes dir = mpm.out_dir(...).",
      "local dir = mpm.out_dir(\"out/column\")"},

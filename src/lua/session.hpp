@@ -20,7 +20,7 @@ struct Session {
   std::string output_dir(const std::string& fallback) const { return out_dir.empty() ? fallback : out_dir; }
   Progress::Mode progress = Progress::Mode::Log;
   std::atomic<bool> interrupted{false};
-  std::string script_dir;                     // directory of the script being run, for its data files
+  std::string script_dir;  // directory of the script being run, for its data files
 };
 
 // A data file named in a script: as given when it exists (or is absolute), otherwise next to the script.

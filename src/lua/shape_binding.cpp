@@ -70,8 +70,9 @@ int polygon(lua_State* L) {
 int polyline(lua_State* L) {
   const Args a(L, 1, kPolylineKeys);
   const std::string side = a.choice("side");
-  const auto s = side == "left" ? PolylineRegion::Side::Left
-                                : side == "right" ? PolylineRegion::Side::Right : PolylineRegion::Side::Both;
+  const auto s = side == "left"    ? PolylineRegion::Side::Left
+                 : side == "right" ? PolylineRegion::Side::Right
+                                   : PolylineRegion::Side::Both;
   auto region = std::make_shared<PolylineRegion>(positional_points(a), a.number("thickness"), s);
   push_object(L, ShapeObject{std::move(region)});
   return 1;
@@ -87,7 +88,11 @@ const Function kShape[] = {
      "A band along a polyline. A one-sided band under a slope gives its particles the line's normal, so contact "
      "follows the true surface.",
      "local base = mpm.shape.polyline{ {0, 0.1}, {1, 0.1}, thickness = 0.02, side = \"right\" }"},
-    {"shape:contains", &guarded<shape_contains>, "s:contains{x, y}", {}, "Whether the point lies inside the shape.",
+    {"shape:contains",
+     &guarded<shape_contains>,
+     "s:contains{x, y}",
+     {},
+     "Whether the point lies inside the shape.",
      "print(s:contains{0.1, 0.1})"},
 };
 

@@ -56,7 +56,8 @@ void validate(const DruckerPragerParameters& p) {
     const double apex = c.k / (3.0 * c.alpha);  // mean stress at the cone's apex
     if (p.tension > apex * (1.0 + 1e-12))
       throw ParameterError({"tension"}, "must be in [0, " + number_text(apex) +
-                                            "] (Pa, at most the apex mean stress of the cone), got " + number_text(p.tension));
+                                            "] (Pa, at most the apex mean stress of the cone), got " +
+                                            number_text(p.tension));
   }
 }
 

@@ -18,8 +18,8 @@ struct ElasticConstants {
 
 // The ranges validate_elastic checks (and the Lua help shows): Poisson's ratio below 0.5, where the
 // bulk modulus becomes infinite.
-inline constexpr Interval kDensityRange = above(0.0);   // kg/m^3
-inline constexpr Interval kYoungRange = above(0.0);     // Pa
+inline constexpr Interval kDensityRange = above(0.0);  // kg/m^3
+inline constexpr Interval kYoungRange = above(0.0);    // Pa
 inline constexpr Interval kPoissonRange = closed_open(0.0, 0.5);
 
 // Throws ParameterError naming the bad parameter ("density", "young", "poisson").

@@ -54,10 +54,12 @@ void validate(const MohrCoulombParameters& p) {
     // The relative slack forgives a tension computed as c / tan(phi) in another order.
     if (p.tension > apex * (1.0 + 1e-12))
       throw ParameterError({"tension"}, "must be in [0, c cot(phi) = " + number_text(apex) +
-                                            "] (Pa, at most the apex of the yield surface), got " + number_text(p.tension));
+                                            "] (Pa, at most the apex of the yield surface), got " +
+                                            number_text(p.tension));
   }
   if (!p.softening) return;
-  check_parameter("softening.cohesion", p.residual_cohesion, closed(0.0, p.cohesion), "Pa, the residual cohesion at most the peak");
+  check_parameter("softening.cohesion", p.residual_cohesion, closed(0.0, p.cohesion),
+                  "Pa, the residual cohesion at most the peak");
   check_parameter("softening.friction", p.residual_friction, closed(0.0, p.friction),
                   "degrees, the residual friction at most the peak");
   check_parameter("softening.strain", p.softening_strain, above(0.0));
@@ -73,10 +75,14 @@ struct Candidate {
   MohrCoulomb::Return kind;
 };
 constexpr Candidate kCandidates[8] = {
-    {1, {0}, MohrCoulomb::Return::Face},           {1, {3}, MohrCoulomb::Return::Tension},
-    {2, {0, 1}, MohrCoulomb::Return::CompressionEdge}, {2, {0, 2}, MohrCoulomb::Return::ExtensionEdge},
-    {2, {3, 4}, MohrCoulomb::Return::TensionEdge}, {2, {0, 3}, MohrCoulomb::Return::Mixed},
-    {3, {0, 3, 4}, MohrCoulomb::Return::Mixed},    {3, {0, 2, 3}, MohrCoulomb::Return::Mixed},
+    {1, {0}, MohrCoulomb::Return::Face},
+    {1, {3}, MohrCoulomb::Return::Tension},
+    {2, {0, 1}, MohrCoulomb::Return::CompressionEdge},
+    {2, {0, 2}, MohrCoulomb::Return::ExtensionEdge},
+    {2, {3, 4}, MohrCoulomb::Return::TensionEdge},
+    {2, {0, 3}, MohrCoulomb::Return::Mixed},
+    {3, {0, 3, 4}, MohrCoulomb::Return::Mixed},
+    {3, {0, 2, 3}, MohrCoulomb::Return::Mixed},
 };
 
 MohrCoulomb::MohrCoulomb(const MohrCoulombParameters& p) : Material(p.density), p_(p), elastic_{p.young, p.poisson} {

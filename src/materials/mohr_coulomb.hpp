@@ -17,7 +17,7 @@ namespace seismpm {
 // The strength (c, phi, psi, tension; tension at most the apex c cot(phi)) and its softening.
 struct MohrCoulombParameters : StrengthParameters {
   double density = 0, young = 0, poisson = 0;
-  bool softening = false;     // linear from (c, phi) to (residual_cohesion, residual_friction) ...
+  bool softening = false;  // linear from (c, phi) to (residual_cohesion, residual_friction) ...
   double residual_cohesion = 0, residual_friction = 0;
   double softening_strain = 0;  // ... reached at this accumulated plastic shear strain
 };

@@ -14,9 +14,9 @@ struct StrengthParameters {
   double tension = 0;    // tensile strength (Pa)
 };
 
-inline constexpr Interval kCohesionRange = at_least(0.0);        // Pa
+inline constexpr Interval kCohesionRange = at_least(0.0);           // Pa
 inline constexpr Interval kFrictionRange = closed_open(0.0, 90.0);  // degrees; tan(90) is infinite
-inline constexpr Interval kTensionRange = at_least(0.0);         // Pa; each model adds its apex
+inline constexpr Interval kTensionRange = at_least(0.0);            // Pa; each model adds its apex
 
 // Throws ParameterError naming the parameter out of range: cohesion >= 0, friction in [0, 90),
 // dilation in [0, friction], tension >= 0, and not both cohesion and friction zero (no strength).

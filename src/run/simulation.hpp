@@ -94,8 +94,8 @@ class Simulation {
   struct RunSpec {
     double duration;
     long max_steps = std::numeric_limits<long>::max();
-    bool final_output = true;             // the end of the run on file (when at_run_end)
-    std::function<bool()> done = {};      // the end criterion; none: the run ends at its duration
+    bool final_output = true;                 // the end of the run on file (when at_run_end)
+    std::function<bool()> done = {};          // the end criterion; none: the run ends at its duration
     std::function<std::string()> extra = {};  // more text for the progress line
     const RunCall* call = nullptr;
   };

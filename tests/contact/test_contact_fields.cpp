@@ -70,7 +70,8 @@ TEST_CASE("contact fields: declarations are checked and name the bodies", "[cont
   CHECK_THROWS_WITH(c.add_pair(bodies, 1, 7, 0.3), Catch::Contains("unknown body"));
   CHECK_THROWS_WITH(c.add_pair(bodies, 0, 1, -0.1), Catch::Contains("finite number >= 0"));
   CHECK_THROWS_WITH(c.add_pair(bodies, 0, 1, NAN), Catch::Contains("finite number >= 0"));
-  CHECK_THROWS_WITH(c.set_friction(bodies, 0, 1, 0.2), Catch::Contains("no contact is declared between 'soil' and 'block'"));
+  CHECK_THROWS_WITH(c.set_friction(bodies, 0, 1, 0.2),
+                    Catch::Contains("no contact is declared between 'soil' and 'block'"));
   c.add_pair(bodies, 0, 1, 0.3);
   CHECK_THROWS_WITH(c.add_pair(bodies, 1, 0, 0.5), Catch::Contains("'block', 'soil' is declared already"));
   std::vector<Body> two_rigid = bodies;

@@ -88,16 +88,16 @@ TEST_CASE("contact at a node: approach, separation, stick and slip", "[contact]"
     NodeFields<2> n;
     n.count = 2;
     n.field[0] = 1, n.field[1] = 3;
-    n.mass[0] = 2.0, n.mass[1] = 0.01;      // soil mass; rigid weight sum N V
+    n.mass[0] = 2.0, n.mass[1] = 0.01;  // soil mass; rigid weight sum N V
     n.gradient[0] = Vec<2>(0.0, -5.0);
-    n.gradient[1] = Vec<2>(0.0, 0.1);       // rigid material below (outward normal up)
-    n.velocity[0] = Vec<2>(0.0, -0.4);      // soil falling onto ...
-    n.velocity[1] = Vec<2>(2.0, 0.0);       // ... a base sliding at 2 m/s
+    n.gradient[1] = Vec<2>(0.0, 0.1);   // rigid material below (outward normal up)
+    n.velocity[0] = Vec<2>(0.0, -0.4);  // soil falling onto ...
+    n.velocity[1] = Vec<2>(2.0, 0.0);   // ... a base sliding at 2 m/s
     Vec<2> force[4] = {Vec<2>::Zero(), Vec<2>::Zero(), Vec<2>::Zero(), Vec<2>::Zero()};
     const double mu = 0.3, dt = 1e-3;
     resolve_contact<2>(n, rules(mu), 1e-12, 0.1, dt, force);
     CHECK(n.velocity[1] == Vec<2>(2.0, 0.0));
-    CHECK(n.velocity[0][1] == Approx(0.0).margin(1e-15));   // no penetration
+    CHECK(n.velocity[0][1] == Approx(0.0).margin(1e-15));        // no penetration
     CHECK(n.velocity[0][0] == Approx(mu * 0.4).epsilon(1e-14));  // dragged by mu |dv_n|
     CHECK(force[1][1] == Approx(2.0 * 0.4 / dt).epsilon(1e-14));
     CHECK(force[1][0] == Approx(2.0 * mu * 0.4 / dt).epsilon(1e-14));
@@ -128,16 +128,16 @@ TEST_CASE("contact at a node: a thin rigid layer's far face and a corner of two 
     n.count = 3;
     n.field[0] = 0, n.field[1] = 1, n.field[2] = 2;
     n.mass[0] = 1.0, n.mass[1] = 0.3, n.mass[2] = 0.2;
-    n.gradient[0] = Vec<2>(-1.0, -1.0);                // soil up and to the right of the corner
-    n.gradient[1] = Vec<2>(0.0, 2.0);                  // base below: outward up
+    n.gradient[0] = Vec<2>(-1.0, -1.0);  // soil up and to the right of the corner
+    n.gradient[1] = Vec<2>(0.0, 2.0);    // base below: outward up
     const Vec<2> wall_out = Vec<2>(1.0, -0.6).normalized();
-    n.gradient[2] = 1.5 * wall_out;                    // wall foot: outward tilted down
-    n.velocity[0] = Vec<2>(-0.8, -0.2);                // sliding left and down into both
+    n.gradient[2] = 1.5 * wall_out;      // wall foot: outward tilted down
+    n.velocity[0] = Vec<2>(-0.8, -0.2);  // sliding left and down into both
     n.velocity[1] = n.velocity[2] = Vec<2>::Zero();
     resolve_contact<2>(n, r, 1e-12, 0.1, 0.0, nullptr);
     const Vec<2>& v = n.velocity[0];
     CAPTURE(v);
     CHECK(v.dot(Vec<2>(0.0, -1.0)) <= 1e-12);  // not into the base
-    CHECK(v.dot(-wall_out) <= 1e-12);           // not into the wall
+    CHECK(v.dot(-wall_out) <= 1e-12);          // not into the wall
   }
 }

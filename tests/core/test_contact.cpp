@@ -168,7 +168,8 @@ TEST_CASE("colliding bodies conserve momentum, bounce and separate", "[core][con
 TEST_CASE("a rigid body leaving the grid stops the run, naming it", "[core][contact][rigid][failures]") {
   cases::MovingBaseBlock c;
   auto b = c.build();
-  b.model->set_rigid_velocity(b.base, {std::make_shared<ConstantHistory>(-50.0), std::make_shared<ConstantHistory>(0.0)});
+  b.model->set_rigid_velocity(b.base,
+                              {std::make_shared<ConstantHistory>(-50.0), std::make_shared<ConstantHistory>(0.0)});
   try {
     b.simulation->run(0.1);
     FAIL("the run went on");
@@ -220,5 +221,5 @@ TEST_CASE("a rough base and a smooth wall meeting at a corner share the load wit
   CHECK(on_base[1] + on_wall[1] == Approx(mass * 9.81).epsilon(0.01));
   CHECK(on_base[0] + on_wall[0] == Approx(mass * 3.0).epsilon(0.01));
   CHECK(std::abs(on_wall[1]) < 0.01 * mass * 9.81);  // a smooth wall takes no shear
-  CHECK(on_wall[0] > 0.5 * mass * 3.0);               // and most of the push
+  CHECK(on_wall[0] > 0.5 * mass * 3.0);              // and most of the push
 }

@@ -69,8 +69,7 @@ Cycle open_close_compress(bool crack_closure) {
 
 }  // namespace
 
-TEST_CASE("an opened tensionless soil closes freely, then loads elastically",
-          "[core][crack_closure]") {
+TEST_CASE("an opened tensionless soil closes freely, then loads elastically", "[core][crack_closure]") {
   const Cycle with = open_close_compress(true);
   const Cycle without = open_close_compress(false);
   CAPTURE(with.at_initial_volume, without.at_initial_volume, with.mean_stress_after, with.net_volumetric);

@@ -1,6 +1,6 @@
 // The parallel scatter is race-free and deterministic: any thread count gives bit-identical results.
-#include <catch2/catch.hpp>
 #include <omp.h>
+#include <catch2/catch.hpp>
 
 #include <cstring>
 
@@ -36,8 +36,8 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 
 }  // namespace
 
-TEMPLATE_TEST_CASE_SIG("results are bit-identical for any number of threads", "[core][parallel]", ((int Dim), Dim),
-                       2, 3) {
+TEMPLATE_TEST_CASE_SIG("results are bit-identical for any number of threads", "[core][parallel]", ((int Dim), Dim), 2,
+                       3) {
   const auto shape = GENERATE(ShapeKind::Linear, ShapeKind::Gimp);
   CAPTURE(to_string(shape));
   const int saved = omp_get_max_threads();
@@ -56,7 +56,8 @@ TEMPLATE_TEST_CASE_SIG("results are bit-identical for any number of threads", "[
   CHECK(one->particles().stress[0].norm() > 0.0);
 }
 
-TEST_CASE("contact and rigid bodies keep results bit-identical for any number of threads", "[core][parallel][contact]") {
+TEST_CASE("contact and rigid bodies keep results bit-identical for any number of threads",
+          "[core][parallel][contact]") {
   const int saved = omp_get_max_threads();
   auto run = [](int threads) {
     omp_set_num_threads(threads);

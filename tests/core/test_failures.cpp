@@ -91,8 +91,8 @@ TEST_CASE("a collapsing time step stops the run and names the fastest particle",
     message = e.what();
   }
   CAPTURE(message);
-  CHECK_THAT(message, Catch::Contains("time step collapsed") && Catch::Contains("particle " + std::to_string(id) + " ") &&
-                          Catch::Contains("step 1 "));
+  CHECK_THAT(message, Catch::Contains("time step collapsed") &&
+                          Catch::Contains("particle " + std::to_string(id) + " ") && Catch::Contains("step 1 "));
   CHECK(m->steps() == 1);
 }
 

@@ -39,10 +39,10 @@ TEST_CASE("grid-edge fixities hold the chosen directions", "[core][grid]") {
   CHECK(g.fixed_nodes().size() == 5 + 4);
   std::vector<Vec<2>> v(g.node_count(), Vec<2>(1.0, 2.0));
   g.apply_fixities(v);
-  CHECK(v[0] == Vec<2>(0.0, 0.0));       // corner: both
-  CHECK(v[5] == Vec<2>(0.0, 2.0));       // left edge, y = 0.25: x only
-  CHECK(v[2] == Vec<2>(0.0, 0.0));       // bottom edge
-  CHECK(v[5 + 2] == Vec<2>(1.0, 2.0));   // interior: free
+  CHECK(v[0] == Vec<2>(0.0, 0.0));      // corner: both
+  CHECK(v[5] == Vec<2>(0.0, 2.0));      // left edge, y = 0.25: x only
+  CHECK(v[2] == Vec<2>(0.0, 0.0));      // bottom edge
+  CHECK(v[5 + 2] == Vec<2>(1.0, 2.0));  // interior: free
   CHECK(parse_side("top", 2) == Side::Top);
   CHECK(parse_dof("xy", 2) == (FixX | FixY));
   CHECK_THROWS_WITH(parse_side("front", 2), Catch::Contains("left|right|bottom|top"));

@@ -170,11 +170,11 @@ TEST_CASE("a field names its VTU array and component", "[core][fields][vtu]") {
     Quantity array;
     int component;
   };
-  const Case c = GENERATE(Case{"ux", Quantity::Displacement, 0}, Case{"uz", Quantity::Displacement, 2},
-                          Case{"vy", Quantity::Velocity, 1}, Case{"sxx", Quantity::Stress, 0},
-                          Case{"szz", Quantity::Stress, 2}, Case{"sxy", Quantity::Stress, 3},
-                          Case{"syz", Quantity::Stress, 4}, Case{"sxz", Quantity::Stress, 5},
-                          Case{"pressure", Quantity::Pressure, 0}, Case{"yield", Quantity::Yield, 0});
+  const Case c =
+      GENERATE(Case{"ux", Quantity::Displacement, 0}, Case{"uz", Quantity::Displacement, 2},
+               Case{"vy", Quantity::Velocity, 1}, Case{"sxx", Quantity::Stress, 0}, Case{"szz", Quantity::Stress, 2},
+               Case{"sxy", Quantity::Stress, 3}, Case{"syz", Quantity::Stress, 4}, Case{"sxz", Quantity::Stress, 5},
+               Case{"pressure", Quantity::Pressure, 0}, Case{"yield", Quantity::Yield, 0});
   INFO(c.name);
   const auto f = parse_field(c.name, 3);
   REQUIRE(f);

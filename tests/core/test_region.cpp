@@ -52,11 +52,11 @@ TEST_CASE("a convex polygon in either orientation", "[core][region]") {
   const PolygonRegion t(counter_clockwise ? ccw : reversed(ccw));
   CHECK(t.area() == (counter_clockwise ? 6.0 : -6.0));
   CHECK(t.vertices().size() == 3);
-  CHECK(t.contains(P(1, 1)));         // 1/4 + 1/3 < 1
-  CHECK_FALSE(t.contains(P(3, 2)));   // 3/4 + 2/3 > 1
-  CHECK(t.contains(P(2, 1.5)));       // on the hypotenuse: 1/2 + 1/2 = 1, edges count as inside
-  CHECK(t.contains(P(4, 0)));         // a vertex
-  CHECK(t.contains(P(2, 0)));         // on the bottom edge
+  CHECK(t.contains(P(1, 1)));        // 1/4 + 1/3 < 1
+  CHECK_FALSE(t.contains(P(3, 2)));  // 3/4 + 2/3 > 1
+  CHECK(t.contains(P(2, 1.5)));      // on the hypotenuse: 1/2 + 1/2 = 1, edges count as inside
+  CHECK(t.contains(P(4, 0)));        // a vertex
+  CHECK(t.contains(P(2, 0)));        // on the bottom edge
   CHECK_FALSE(t.contains(P(-0.1, 1)));
   CHECK_FALSE(t.contains(P(1, -0.1)));
   CHECK(t.lower() == P(0, 0));
@@ -71,13 +71,13 @@ TEST_CASE("a concave polygon in either orientation", "[core][region]") {
   const bool counter_clockwise = GENERATE(true, false);
   const PolygonRegion u(counter_clockwise ? ccw : reversed(ccw));
   CHECK(u.area() == (counter_clockwise ? 7.0 : -7.0));
-  CHECK(u.contains(P(1.5, 0.5)));       // the bottom of the U
-  CHECK(u.contains(P(0.5, 2.5)));       // the left arm
-  CHECK(u.contains(P(2.5, 2.5)));       // the right arm
-  CHECK_FALSE(u.contains(P(1.5, 2.0))); // in the notch
-  CHECK(u.contains(P(1.5, 1.0)));       // the notch's floor is an edge
-  CHECK(u.contains(P(1.0, 2.0)));       // and so are its walls
-  CHECK_FALSE(u.contains(P(1.5, 3.0))); // the open top of the notch, between the arms
+  CHECK(u.contains(P(1.5, 0.5)));        // the bottom of the U
+  CHECK(u.contains(P(0.5, 2.5)));        // the left arm
+  CHECK(u.contains(P(2.5, 2.5)));        // the right arm
+  CHECK_FALSE(u.contains(P(1.5, 2.0)));  // in the notch
+  CHECK(u.contains(P(1.5, 1.0)));        // the notch's floor is an edge
+  CHECK(u.contains(P(1.0, 2.0)));        // and so are its walls
+  CHECK_FALSE(u.contains(P(1.5, 3.0)));  // the open top of the notch, between the arms
   CHECK(u.lower() == P(0, 0));
   CHECK(u.upper() == P(3, 3));
   CHECK(u.describe() == "polygon of 8 points, area 7.000000");

@@ -88,9 +88,10 @@ TEST_CASE("uGIMP tends to the linear tent as the particle size goes to zero", "[
   double previous = 1.0;
   for (double l : {1e-2, 1e-3, 1e-4, 1e-5}) {
     double worst = 0.0;
-    for (double r = -1.2; r <= 1.2; r += 0.001) worst = std::max(worst, std::abs(GimpShape::value(r, l) - std::max(0.0, 1.0 - std::abs(r))));
+    for (double r = -1.2; r <= 1.2; r += 0.001)
+      worst = std::max(worst, std::abs(GimpShape::value(r, l) - std::max(0.0, 1.0 - std::abs(r))));
     CAPTURE(l, worst);
-    CHECK(worst <= l);           // the difference is O(l) ...
+    CHECK(worst <= l);              // the difference is O(l) ...
     CHECK(worst < 0.5 * previous);  // ... and falls with l
     previous = worst;
   }
@@ -107,9 +108,9 @@ TEST_CASE("a stencil is refused outside the grid and clipped at its edge", "[cor
   };
   REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.025, 0.5), 0.25, g));  // support [0, 0.05]: complete
   CHECK(weight_sum(g) == Approx(1.0).epsilon(1e-14));
-  REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.015, 0.5), 0.25, g));  // reaches 0.01 past the edge
-  CHECK(weight_sum(g) == Approx(1.0 - 0.1 * 0.1 / 1.0).epsilon(1e-12)); // (l - xi)^2 / (4 l) clipped
-  REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.975, 0.975), 0.25, g)); // last node weight zero: shifted back
+  REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.015, 0.5), 0.25, g));    // reaches 0.01 past the edge
+  CHECK(weight_sum(g) == Approx(1.0 - 0.1 * 0.1 / 1.0).epsilon(1e-12));   // (l - xi)^2 / (4 l) clipped
+  REQUIRE(make_stencil<GimpShape>(grid, Vec<2>(0.975, 0.975), 0.25, g));  // last node weight zero: shifted back
   CHECK(weight_sum(g) == Approx(1.0).epsilon(1e-14));
   CHECK(make_stencil<LinearShape>(grid, Vec<2>(1.0, 0.0), 0.0, s));
   CHECK(weight_sum(s) == Approx(1.0).epsilon(1e-14));

@@ -28,7 +28,8 @@ std::string sine_at2(double amp_g, double omega, double dt, int n) {
   os << "PEER NGA STRONG MOTION DATABASE RECORD\nSYNTHETIC SINE, TEST\nACCELERATION TIME SERIES IN UNITS OF G\n";
   os << "NPTS=  " << n << ", DT=   " << dt << " SEC\n";
   os.precision(10);
-  for (int k = 0; k < n; ++k) os << "  " << std::scientific << amp_g * std::sin(omega * k * dt) << ((k + 1) % 5 ? "" : "\n");
+  for (int k = 0; k < n; ++k)
+    os << "  " << std::scientific << amp_g * std::sin(omega * k * dt) << ((k + 1) % 5 ? "" : "\n");
   os << "\n";
   return write_temp("seismpm_sine.AT2", os.str());
 }
@@ -75,10 +76,12 @@ TEST_CASE("baseline correction brings the end velocity and displacement to zero"
 
 TEST_CASE("bad records are refused naming the file and the line", "[io][ground_motion]") {
   const std::string h = "A\nB\nC\n";
-  CHECK_THROWS_WITH(read_at2(write_temp("s1.AT2", h + "NPTS= 3 DT\n1 2 3\n")), Catch::Contains("s1.AT2:4: expected 'NPTS= n, DT= dt SEC'"));
+  CHECK_THROWS_WITH(read_at2(write_temp("s1.AT2", h + "NPTS= 3 DT\n1 2 3\n")),
+                    Catch::Contains("s1.AT2:4: expected 'NPTS= n, DT= dt SEC'"));
   CHECK_THROWS_WITH(read_at2(write_temp("s2.AT2", h + "NPTS= 4, DT= 0.01 SEC\n1 2 3\n")),
                     Catch::Contains("s2.AT2:5: the header says NPTS= 4 but the file holds 3 values"));
-  CHECK_THROWS_WITH(read_at2(write_temp("s3.AT2", h + "NPTS= 3, DT= 0.01 SEC\n1 x 3\n")), Catch::Contains("s3.AT2:5: 'x' is not a number"));
+  CHECK_THROWS_WITH(read_at2(write_temp("s3.AT2", h + "NPTS= 3, DT= 0.01 SEC\n1 x 3\n")),
+                    Catch::Contains("s3.AT2:5: 'x' is not a number"));
   CHECK_THROWS_WITH(read_at2(write_temp("s4.AT2", "A\nB\n")), Catch::Contains("s4.AT2:3: AT2 header ends early"));
   CHECK_THROWS_WITH(read_acceleration_columns(write_temp("c1.csv", "# t, a\n0, 0\n0.1, 1\n0.1, 2\n"), 1.0),
                     Catch::Contains("c1.csv:4: times must increase"));
@@ -86,23 +89,29 @@ TEST_CASE("bad records are refused naming the file and the line", "[io][ground_m
                     Catch::Contains("c2.csv:3: expected two columns"));
   CHECK_THROWS_WITH(read_acceleration_columns(write_temp("c3.csv", "0 0\n0.1 abc\n"), 1.0),
                     Catch::Contains("c3.csv:2: not a number: 'abc'"));
-  CHECK_THROWS_WITH(read_acceleration_columns(write_temp("c4.csv", "# only comments\n\n"), 1.0), Catch::Contains("c4.csv: empty record"));
-  CHECK_THROWS_WITH(read_acceleration_columns("/nonexistent/record.csv", 1.0), Catch::Contains("/nonexistent/record.csv: cannot open"));
+  CHECK_THROWS_WITH(read_acceleration_columns(write_temp("c4.csv", "# only comments\n\n"), 1.0),
+                    Catch::Contains("c4.csv: empty record"));
+  CHECK_THROWS_WITH(read_acceleration_columns("/nonexistent/record.csv", 1.0),
+                    Catch::Contains("/nonexistent/record.csv: cannot open"));
   CHECK_THROWS_WITH(parse_baseline("cubic"), Catch::Contains("none|linear|quadratic"));
 }
 
 TEST_CASE("records from Lua: units, scale, peak, duration, write_csv", "[io][ground_motion][lua]") {
-  const std::string file = write_temp("seismpm_record.txt", "# time (s)  acceleration (gal)\n0 0\n1 100\n2 0\n3 -100\n4 0\n");
+  const std::string file =
+      write_temp("seismpm_record.txt", "# time (s)  acceleration (gal)\n0 0\n1 100\n2 0\n3 -100\n4 0\n");
   const std::string out = write_temp("seismpm_record_out.csv", "");
   test::LuaFixture f;
   const std::string error = f.error_of(R"(
-    local a = mpm.history.at2{ file = ")" + file + R"(", units = "gal", integrate = "none", scale = 2 }
+    local a = mpm.history.at2{ file = ")" +
+                                       file + R"(", units = "gal", integrate = "none", scale = 2 }
     assert(math.abs(a:at(1) - 2.0) < 1e-12 and math.abs(a:peak() - 2.0) < 1e-12 and a:duration() == 4)
-    local v = mpm.history.at2{ file = ")" + file + R"(", units = "gal" }
+    local v = mpm.history.at2{ file = ")" +
+                                       file + R"(", units = "gal" }
     assert(math.abs(v:at(2) - 1.0) < 1e-12 and math.abs(v:at(4)) < 1e-12)   -- trapezoid: 0.5 + 0.5
     assert(tostring(v):find("PGA 0.102 g"))
     v:write_csv(")" + out + R"(")
-    assert(not pcall(mpm.history.at2, { file = ")" + file + R"(", units = "furlong" }))
+    assert(not pcall(mpm.history.at2, { file = ")" +
+                                       file + R"(", units = "furlong" }))
     assert(not pcall(function() return mpm.history.fn(function(t) return t end):peak() end))
   )");
   CHECK(error == "");

@@ -1,5 +1,4 @@
 // ParaView output, probe histories and plots, read back and checked against the particle state.
-#include <catch2/catch.hpp>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -7,6 +6,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLUnstructuredGridReader.h>
+#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -14,10 +14,10 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
-#include "materials/linear_elastic.hpp"
 #include "io/output.hpp"
 #include "io/probe_plot.hpp"
 #include "lua/lua_fixture.hpp"
+#include "materials/linear_elastic.hpp"
 
 namespace fs = std::filesystem;
 using namespace seismpm;
@@ -160,7 +160,7 @@ TEST_CASE("a run that fails between two writes leaves valid files", "[io][vtu]")
   )");
   CHECK_THAT(error, Catch::Contains("left the grid"));  // at t = 0.108 s
   const auto files = read_pvd(dir + "/particles.pvd");
-  REQUIRE(files.size() == 6);                           // 0, 0.02, ... 0.1: all that was reached
+  REQUIRE(files.size() == 6);  // 0, 0.02, ... 0.1: all that was reached
   CHECK(files.back().first == Approx(0.1));
   for (const auto& [t, file] : files) CHECK(read_vtu(dir + "/" + file)->GetNumberOfPoints() == 16);
 }
@@ -171,10 +171,12 @@ TEST_CASE("an unwritable output directory is an error naming the path", "[io][vt
     m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
     m:output{ dir = "/proc/seismpm_cannot_write_here", every = 0.1 }
   )");
-  CHECK_THAT(error, Catch::Contains("model:output: cannot create the output directory /proc/seismpm_cannot_write_here"));
+  CHECK_THAT(error,
+             Catch::Contains("model:output: cannot create the output directory /proc/seismpm_cannot_write_here"));
   CHECK_THROWS_AS(write_file_atomically("/proc/nope/file.txt", "x"), OutputError);
-  CHECK_THAT(f.error_of("mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }:output{ dir = '/tmp/x', fields = {'speed'} }"),
-             Catch::Contains("unknown output field 'speed'"));
+  CHECK_THAT(
+      f.error_of("mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }:output{ dir = '/tmp/x', fields = {'speed'} }"),
+      Catch::Contains("unknown output field 'speed'"));
 }
 
 TEST_CASE("probe plots are PNG images, one per quantity", "[io][plot]") {

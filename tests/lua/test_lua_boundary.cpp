@@ -47,7 +47,8 @@ TEST_CASE("argument tables are read raw: __index, __len and __pairs never run", 
     assert(tostring(m):find("softening to c 0 Pa, phi 20"))
   )") == "");
   // A point {x} whose __index would give y is one number short.
-  CHECK_THAT(run("mpm.shape.polygon{ {0, 0}, evil{1}, {1, 1} }"), Contains("point 2 must be a point {x, y} with 2 numbers"));
+  CHECK_THAT(run("mpm.shape.polygon{ {0, 0}, evil{1}, {1, 1} }"),
+             Contains("point 2 must be a point {x, y} with 2 numbers"));
   CHECK_THAT(run("mpm.material.mohr_coulomb{ density = 2000, young = 1e7, poisson = 0.3, friction = 30, "
                  "softening = evil{ friction = 20 } }"),
              Contains("key 'softening': missing key 'strain'"));
@@ -72,28 +73,35 @@ TEST_CASE("wrong values name the key and never run their metamethods", "[lua][bo
        "key 'softening': expects a table of named arguments"},
       {"mpm.material.linear_elastic(evil())", "missing key 'density'"},
       {"mpm.material.linear_elastic{ [evil()] = 1 }", "unknown key '[hostile table]'"},
-      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3, [1.5] = 2 }", "unknown key '[number]'"},
+      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3, [1.5] = 2 }",
+       "unknown key '[number]'"},
       {"mpm.history.table{ {0, 0}, [5] = {1, 1} }", "unknown key '[5]'"},
       {"mpm.history.fn(evil())", "expects a function of time"},
       {"mpm.history.table{ {0, 0} }:at(evil())", "expects a time t (s), got hostile table"},
-      {"local at = getmetatable(mpm.history.table{ {0, 0} }).__index.at; at(evil(), 1)", "self must be a history, got hostile table"},
+      {"local at = getmetatable(mpm.history.table{ {0, 0} }).__index.at; at(evil(), 1)",
+       "self must be a history, got hostile table"},
       {"help(evil())", "no help for this hostile table"},
       {"mpm.model{ domain = evil{ {0, 0}, {1, 1} }, cell = 0.1 }", ""},  // read raw: a domain
       {"mpm.model{ domain = evil{ {0, 0} }, cell = 0.1 }", "key 'domain' must hold 2 corner points"},
       {"mpm.model{ domain = {{0, 0}, {1, 1}}, cell = evil() }", "key 'cell' must be a number, got hostile table"},
       {"mpm.model(evil{ domain = {{0, 0}, {1, 1}} })", "mpm.model: missing key 'cell'"},
       {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:rigid{ shape = mpm.shape.rectangle{0, 0, 1, 0.2}, "
-       "velocity = evil{ 1, 0 } }", ""},
+       "velocity = evil{ 1, 0 } }",
+       ""},
       {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:rigid{ shape = mpm.shape.rectangle{0, 0, 1, 0.2}, "
-       "velocity = evil{ 1 } }", "key 'velocity' must be {vx, vy}"},
-      {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:body{ material = evil(), shape = mpm.shape.rectangle{0, 0, 1, 0.2} }",
+       "velocity = evil{ 1 } }",
+       "key 'velocity' must be {vx, vy}"},
+      {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:body{ material = evil(), shape = "
+       "mpm.shape.rectangle{0, 0, 1, 0.2} }",
        "key 'material' must be a material, got hostile table"},
-      {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:contact(evil{ friction = 0.1 })", "name the two bodies"},
+      {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:contact(evil{ friction = 0.1 })",
+       "name the two bodies"},
       {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:run(evil{ duration = 1, every = 0.1 })",
        "key 'every' needs key 'call'"},
       {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:output(evil{ every = evil() })",
        "key 'every' must be a number, got hostile table"},
-      {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:gravity_phase(evil{ k0 = 4 })", "key 'k0' must be in (0, 3], got 4"},
+      {"m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } m:gravity_phase(evil{ k0 = 4 })",
+       "key 'k0' must be in (0, 3], got 4"},
       {"mpm.shape.rectangle{0, 0, 1, 1}:contains(evil{0.5, 0.5})", ""},  // a plain point: works
   };
   for (const auto& c : cases) {
@@ -127,7 +135,8 @@ TEST_CASE("history.fn: errors, yields and bad values are clean errors naming t",
     local h = mpm.history.fn(function(t) return coroutine.yield(t) end)
     local co = coroutine.wrap(function() return h:at(2) end)
     co()
-  )"), Contains("history function failed at t = 2") && Contains("yield"));
+  )"),
+             Contains("history function failed at t = 2") && Contains("yield"));
   CHECK(run(R"(
     local h = mpm.history.fn(function(t) return 3 * t end)
     local co = coroutine.wrap(function() return h:at(2), h:at(3) end)
@@ -175,8 +184,8 @@ TEST_CASE("history.fn releases its registry reference when the history dies", "[
   REQUIRE(f.error_of(histories) == "");
   const auto second = registry_length();
   CAPTURE(first, second);
-  CHECK(first > 100);             // they were held
-  CHECK(second < first + 50);     // and released: without the release + 2000
+  CHECK(first > 100);          // they were held
+  CHECK(second < first + 50);  // and released: without the release + 2000
 }
 
 TEST_CASE("a history kept by C++ after lua_close refuses to run and is released safely", "[lua][boundary][history]") {
@@ -204,7 +213,8 @@ TEST_CASE("deep recursion through the bindings ends in a clean error", "[lua][bo
     local b = m:body{ material = mat, shape = mpm.shape.rectangle{0.2, 0.2, 0.4, 0.4} }
     local function v(x, y) b:set_velocity(v); return 0, 0 end
     b:set_velocity(v)
-  )"), Contains("the velocity function failed") && Contains("stack overflow"));
+  )"),
+             Contains("the velocity function failed") && Contains("stack overflow"));
   // Deep plain Lua recursion with a binding at the bottom, then past Lua's limit.
   CHECK(run(R"(
     local function deep(n) if n == 0 then return mpm.shape.rectangle{0, 0, 1, 1} end return (deep(n - 1)) end
@@ -215,7 +225,8 @@ TEST_CASE("deep recursion through the bindings ends in a clean error", "[lua][bo
   )") == "");
 }
 
-TEST_CASE("console support in the runtime: values shown even when __tostring fails, completion raw", "[lua][boundary][console]") {
+TEST_CASE("console support in the runtime: values shown even when __tostring fails, completion raw",
+          "[lua][boundary][console]") {
   LuaFixture f;
   std::string out;
   using Entry = seismpm::lua::Runtime::Entry;
@@ -233,7 +244,8 @@ TEST_CASE("console support in the runtime: values shown even when __tostring fai
   CHECK(matches[0] == "mpm.material");
 }
 
-TEST_CASE("hostile values in every argument of every function: errors or results, never a crash", "[lua][boundary][fuzz]") {
+TEST_CASE("hostile values in every argument of every function: errors or results, never a crash",
+          "[lua][boundary][fuzz]") {
   CHECK(run(R"(
     local m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
     local mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3 }
@@ -273,11 +285,15 @@ TEST_CASE("hostile values in every argument of every function: errors or results
 
 TEST_CASE("the Lua library checks its calls against the same key tables, at the script's line", "[lua][boundary]") {
   LuaFixture f;
-  CHECK_THAT(f.error_of("local s = 1\nmpm.geometry.slope{ left = 0, right = 1, crest = {0.3, 0.5}, toe_level = 0.2, angle = 95 }"),
-             Contains("test:2: mpm.geometry.slope: key 'angle' must be in (0, 90) (degrees), got 95"));
-  CHECK_THAT(f.error_of("mpm.geometry.layers{ left = 0, rigth = 1, {top = 1} }"),
-             Contains("test:1: mpm.geometry.layers: unknown key 'rigth' (allowed: left, right, base, positional entries)"));
-  CHECK_THAT(f.error_of("mpm.geometry.slope(evil)"), Contains("mpm.geometry.slope: expects a table of named arguments"));
+  CHECK_THAT(
+      f.error_of(
+          "local s = 1\nmpm.geometry.slope{ left = 0, right = 1, crest = {0.3, 0.5}, toe_level = 0.2, angle = 95 }"),
+      Contains("test:2: mpm.geometry.slope: key 'angle' must be in (0, 90) (degrees), got 95"));
+  CHECK_THAT(
+      f.error_of("mpm.geometry.layers{ left = 0, rigth = 1, {top = 1} }"),
+      Contains("test:1: mpm.geometry.layers: unknown key 'rigth' (allowed: left, right, base, positional entries)"));
+  CHECK_THAT(f.error_of("mpm.geometry.slope(evil)"),
+             Contains("mpm.geometry.slope: expects a table of named arguments"));
   CHECK(f.error_of(R"(
     local layers = mpm.geometry.layers{ left = 0, right = 2, {top = 1}, {top = 3, name = "sand"} }
     assert(#layers == 2 and layers[2].name == "sand" and layers[1].shape:contains{1, 0.5})  -- base defaults to 0

@@ -41,7 +41,8 @@ TEST_CASE("a free-falling block in Lua drops 0.5 g t^2", "[lua][model]") {
   CHECK(error == "");
 }
 
-TEST_CASE("a run's call comes at its times, takes the same steps as chunked runs, and can end the run", "[lua][model]") {
+TEST_CASE("a run's call comes at its times, takes the same steps as chunked runs, and can end the run",
+          "[lua][model]") {
   LuaFixture f;
   const std::string error = f.error_of(std::string(kBlock) + R"(
     local function fresh()
@@ -76,8 +77,10 @@ TEST_CASE("a run's call comes at its times, takes the same steps as chunked runs
 
 TEST_CASE("a run's call: bad keys and failing calls are named, and the model stays usable", "[lua][errors]") {
   LuaFixture f;
-  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, every = 0.1 }"), Catch::Contains("key 'every' needs key 'call'"));
-  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, call = print }"), Catch::Contains("key 'call' needs key 'every'"));
+  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, every = 0.1 }"),
+             Catch::Contains("key 'every' needs key 'call'"));
+  CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, call = print }"),
+             Catch::Contains("key 'call' needs key 'every'"));
   CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, every = 0.1, call = 5 }"),
              Catch::Contains("key 'call' must be a function"));
   CHECK_THAT(f.error_of(std::string(kBlock) + "m:run{ duration = 1, every = -1, call = print }"),
@@ -158,26 +161,33 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
   };
   const std::string mat = "mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3 } ";
   const std::string model = std::string("m = mpm.model{ ") + domain + ", cell = 0.1 } " + mat;
-  const std::string rigid_pair = "b = m:body{ name = 'b', material = mat, shape = mpm.shape.rectangle{0.2, 0.2, 0.6, 0.6} } "
-                                 "r = m:rigid{ name = 'r', shape = mpm.shape.rectangle{0, 0, 1, 0.2} } ";
+  const std::string rigid_pair =
+      "b = m:body{ name = 'b', material = mat, shape = mpm.shape.rectangle{0.2, 0.2, 0.6, 0.6} } "
+      "r = m:rigid{ name = 'r', shape = mpm.shape.rectangle{0, 0, 1, 0.2} } ";
   const std::vector<Case> cases = {
-      {std::string("mpm.model{ ") + domain + ", cell = 0.1, foo = 1 }", "mpm.model: unknown key 'foo' (allowed: domain"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, foo = 1 }",
+       "mpm.model: unknown key 'foo' (allowed: domain"},
       {"mpm.model{ cell = 0.1 }", "mpm.model: missing key 'domain'"},
       {std::string("mpm.model{ ") + domain + " }", "missing key 'cell'"},
       {std::string("mpm.model{ ") + domain + ", cell = 'fine' }", "key 'cell' must be a number, got string"},
       {std::string("mpm.model{ ") + domain + ", cell = 0 }", "key 'cell' must be > 0 (m), got 0"},
-      {std::string("mpm.model{ ") + domain + ", cell = 0.1, shape = 'cubic' }", "key 'shape' must be one of linear|gimp"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, shape = 'cubic' }",
+       "key 'shape' must be one of linear|gimp"},
       {std::string("mpm.model{ ") + domain + ", cell = 0.1, cfl = 2 }", "key 'cfl' must be in (0, 1], got 2"},
       {"mpm.model{ domain = {{0, 0}, {0, 1}}, cell = 0.1 }", "key 'domain' is empty"},
       {"mpm.model{ domain = {{0, 0, 0}, {1, 1, 1}}, cell = 0.1 }", "3D models are not available"},
       {"mpm.model(5)", "expects a table of named arguments"},
       {std::string("mpm.model{ ") + domain + ", cell = 0.1, cfl = 0 }", "key 'cfl' must be in (0, 1], got 0"},
-      {std::string("mpm.model{ ") + domain + ", cell = 0.1, max_dilation = 0.5 }", "key 'max_dilation' must be 0 or >= 1, got 0.5"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, max_dilation = 0.5 }",
+       "key 'max_dilation' must be 0 or >= 1, got 0.5"},
       // The kernel's rule, in the kernel: at least 2 cells after rounding up (Grid, Model).
-      {"mpm.model{ domain = {{0, 0}, {1, 0.1}}, cell = 0.1 }", "mpm.model: model: the domain must span at least 2 cells"},
+      {"mpm.model{ domain = {{0, 0}, {1, 0.1}}, cell = 0.1 }",
+       "mpm.model: model: the domain must span at least 2 cells"},
       {"mpm.material.linear_elastic{ density = 1000, young = 0, poisson = 0.3 }", "key 'young' must be > 0 (Pa)"},
-      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.5 }", "key 'poisson' must be in [0, 0.5)"},
-      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = -0.1 }", "key 'poisson' must be in [0, 0.5)"},
+      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.5 }",
+       "key 'poisson' must be in [0, 0.5)"},
+      {"mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = -0.1 }",
+       "key 'poisson' must be in [0, 0.5)"},
       {"mpm.material.linear_elastic{ density = -1, young = 1e6, poisson = 0.3 }", "key 'density' must be > 0"},
       {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 90 }",
        "key 'friction' must be in [0, 90) (degrees)"},
@@ -186,14 +196,18 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, cohesion = -1 }",
        "key 'cohesion' must be >= 0 (Pa)"},
       {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, cohesion = 780, "
-       "tension = 5000 }", "key 'tension' must be in [0, c cot(phi)"},
+       "tension = 5000 }",
+       "key 'tension' must be in [0, c cot(phi)"},
       {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 0 }",
        "'cohesion' and 'friction' cannot both be zero"},
-      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { friction = 30, strain = 0.1 } }",
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { "
+       "friction = 30, strain = 0.1 } }",
        "key 'softening.friction' must be in [0, 23]"},
-      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { friction = 10 } }",
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { "
+       "friction = 10 } }",
        "missing key 'strain'"},
-      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { frction = 10 } }",
+      {"mpm.material.mohr_coulomb{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, softening = { "
+       "frction = 10 } }",
        "unknown key 'frction'"},
       {"mpm.material.drucker_prager{ density = 1680, young = 2.57e6, poisson = 0.33, friction = 23, fit = 'middle' }",
        "key 'fit' must be one of plane_strain|outer|inner"},
@@ -202,23 +216,33 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {"mpm.shape.polygon{ {0, 0}, {1, 'a'}, {1, 0} }", "point 2 must be a point {x, y} of numbers"},
       {"mpm.shape.rectangle{ 1, 0, 0, 1 }", "x0 < x1"},
       {"mpm.shape.polyline{ {0, 0}, {1, 0}, thickness = 0 }", "key 'thickness' must be > 0"},
-      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.5, 0.5, 1.5, 0.9} }", "reaches outside the domain"},
-      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 0 }", "key 'ppc' must be in [1, 16], got 0"},
-      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 17 }", "key 'ppc' must be in [1, 16], got 17"},
-      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 2.5 }", "key 'ppc' must be a whole number, got 2.5"},
-      {model + "m:body{ shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }", "key 'material' must be a material, got nil"},
-      {model + "m:body{ material = 5, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }", "key 'material' must be a material, got number"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.5, 0.5, 1.5, 0.9} }",
+       "reaches outside the domain"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 0 }",
+       "key 'ppc' must be in [1, 16], got 0"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 17 }",
+       "key 'ppc' must be in [1, 16], got 17"},
+      {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5}, ppc = 2.5 }",
+       "key 'ppc' must be a whole number, got 2.5"},
+      {model + "m:body{ shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }",
+       "key 'material' must be a material, got nil"},
+      {model + "m:body{ material = 5, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }",
+       "key 'material' must be a material, got number"},
       {model + "m:body{ material = mat }", "missing key 'shape'"},
       {model + "m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.11, 0.11} }", "holds no particle"},
       {model + "m:body{ name = 'a', material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} }"
-               "m:body{ name = 'a', material = mat, shape = mpm.shape.rectangle{0.6, 0.6, 0.9, 0.9} }", "a body called 'a' exists"},
+               "m:body{ name = 'a', material = mat, shape = mpm.shape.rectangle{0.6, 0.6, 0.9, 0.9} }",
+       "a body called 'a' exists"},
       {model + "m:fix{ side = 'up' }", "key 'side' must be one of left|right|bottom|top, got 'up'"},
       {model + "m:fix{ side = 'left', dof = 'z' }", "key 'dof' must be one of x|y|xy"},
       {model + "m:run{ duration = -1 }", "key 'duration' must be > 0 (s)"},
       {model + "m:step(0)", "whole number >= 1"},
       {model + "m:probe{ at = {0.5, 0.5} }", "key 'body' must be a body, got nil"},
-      {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:field('speed')", "unknown field 'speed'"},
-      {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:set_velocity{5, 0} m:run{ duration = 1 }", "left the grid"},
+      {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:field('speed')",
+       "unknown field 'speed'"},
+      {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } b:set_velocity{5, 0} "
+               "m:run{ duration = 1 }",
+       "left the grid"},
       // Contact and rigid bodies.
       {model + rigid_pair + "m:contact{ b, r, friction = -0.1 }", "key 'friction' must be >= 0"},
       {model + rigid_pair + "m:contact{ b, r }", "missing key 'friction'"},
@@ -230,15 +254,18 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {model + rigid_pair + "m:set_friction{ b, r, friction = 0.3 }", "no contact is declared between 'b' and 'r'"},
       {model + rigid_pair + "m:contact{ b, r, friction = 0.3 } m:set_friction{ b, r, friction = -1 }",
        "key 'friction' must be >= 0"},
-      {model + rigid_pair + "m2 = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } "
-               "o = m2:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } m:contact{ b, o, friction = 0 }",
+      {model + rigid_pair +
+           "m2 = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } "
+           "o = m2:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } m:contact{ b, o, friction = "
+           "0 }",
        "the second body belongs to another model"},
       {model + "m:rigid{ shape = mpm.shape.rectangle{-0.5, 0, 0.5, 0.1} }", "key 'shape': rectangle"},
       {model + "m:rigid{ shape = mpm.shape.rectangle{0, 0, 0.5, 0.1}, velocity = {'fast', 0} }",
        "key 'velocity' vx must be a number or a history (mpm.history.*), got string"},
       {model + "m:rigid{ shape = mpm.shape.rectangle{0, 0, 0.5, 0.1}, velocity = 2 }",
        "key 'velocity' must be {vx, vy}: two numbers (m/s) or histories, got number"},
-      {model + "m:rigid{ shape = mpm.shape.rectangle{0, 0, 0.5, 0.1}, velocity = {0, 0/0} }", "key 'velocity' vy must be finite"},
+      {model + "m:rigid{ shape = mpm.shape.rectangle{0, 0, 0.5, 0.1}, velocity = {0, 0/0} }",
+       "key 'velocity' vy must be finite"},
       {model + rigid_pair + "b:reaction()", "body 'b' is not rigid"},
       {model + rigid_pair + "r:set_velocity{ 50, 0 } m:run{ duration = 1 }",
        "is about to leave the grid: rigid body 'r' moves at (50, 0) m/s"},
@@ -284,7 +311,8 @@ TEST_CASE("a rigid base and frictional contact from Lua", "[lua][contact]") {
     assert(base:count() == 26, "base " .. base:count())  -- x = -0.95 .. 1.55: the band's ends are round
     assert(tostring(base):find("rigid body 'base'"))
     m:contact{ blk, base, friction = 0.5 }
-    m:output{ dir = ")" + dir.string() + R"(", every = 0.1 }
+    m:output{ dir = ")" + dir.string() +
+                                       R"(", every = 0.1 }
     m:run{ duration = 0.5, damping = 0.7 }
     local f = base:reaction()
     assert(math.abs(f[2] - 1000 * 9.81 * 0.25) < 0.02 * 1000 * 9.81 * 0.25, "reaction " .. f[2])

@@ -115,7 +115,8 @@ TEST_CASE("phases: histories run on the phase clock; the gravity phase holds rig
     -- 1 m/s from t = 0 of each phase that lets it move: a gravity phase must not.
     local base = m:rigid{ name = "base", ppc = 1, velocity = {mpm.history.table{{0, 1}, {10, 1}}, 0},
                           shape = mpm.shape.rectangle{-0.4, -0.1, 1.0, 0} }
-    m:output{ dir = ")" + dir.string() + R"(", every = 0.1 }
+    m:output{ dir = ")" + dir.string() +
+                                       R"(", every = 0.1 }
     local x0 = base:centroid()[1]
     local eq = m:gravity_phase{ max_time = 2 }
     assert(math.abs(base:centroid()[1] - x0) < 1e-12, "the base moved in the gravity phase")
@@ -170,8 +171,9 @@ TEST_CASE("dynamic phase with damping 0: an elastic bar keeps its amplitude", "[
 
 TEST_CASE("phase arguments are checked", "[lua][phases][errors]") {
   const std::string model = "m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 } ";
-  const std::string body = "mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3 } "
-                           "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } ";
+  const std::string body =
+      "mat = mpm.material.linear_elastic{ density = 1000, young = 1e6, poisson = 0.3 } "
+      "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } ";
   struct Case {
     std::string code, expected;
   };

@@ -56,7 +56,9 @@ TEST_CASE("plane-strain biaxial test: the plane_strain fit gives the Mohr-Coulom
   const MohrCoulomb mc(mc_soil(psi));
   const double lambda = ElasticConstants{50e6, 0.3}.lambda(), G = dp.shear_modulus();
   const test::PointUpdate dp_update = [&](const Sym& s, const Sym& de, bool) { return dp.integrate(s, de).stress; };
-  const test::PointUpdate mc_update = [&](const Sym& s, const Sym& de, bool) { return mc.integrate(s, de, 0.0).stress; };
+  const test::PointUpdate mc_update = [&](const Sym& s, const Sym& de, bool) {
+    return mc.integrate(s, de, 0.0).stress;
+  };
   for (double p0 : {50e3, 200e3}) {
     CAPTURE(psi, p0);
     // sigma_xx held at -p0, eps_zz = 0 (plane strain), yy shortened well past the peak.
@@ -91,7 +93,8 @@ TEST_CASE("Drucker-Prager returns lie on the cone, the apex or the cut-off", "[m
   CHECK(r.plastic);
   CHECK(std::abs(dp.yield_function(r.stress)) < 1e-8 * 100e3);
   CHECK(std::abs(trace(r.stress) - trace(hydrostatic(-100e3)) -
-                 3 * ElasticConstants{50e6, 0.3}.bulk() * (de[0] + de[1])) < 1e-6);  // psi = 0: no plastic volume change
+                 3 * ElasticConstants{50e6, 0.3}.bulk() * (de[0] + de[1])) <
+        1e-6);  // psi = 0: no plastic volume change
   // Pulled apart: the mean stress stops at the cut-off (0), the result stays admissible.
   de.setZero();
   de[0] = de[1] = de[2] = 1e-3;

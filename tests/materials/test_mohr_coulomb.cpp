@@ -1,6 +1,6 @@
 // Mohr-Coulomb: stress-point returns against the closed form, and drained triaxial tests.
-#include <catch2/catch.hpp>
 #include <Eigen/Geometry>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -38,7 +38,7 @@ Sym strain_to(const MohrCoulomb& m, const Sym& s0, const Sym& s) {
   const Sym ds = s - s0;
   const double tr = trace(ds);
   Sym e = ds / (2.0 * G);
-  for (int i = 0; i < 3; ++i) e[i] += tr / 9.0 * (1.0 / K - 3.0 / (2.0 * G)) ;
+  for (int i = 0; i < 3; ++i) e[i] += tr / 9.0 * (1.0 / K - 3.0 / (2.0 * G));
   return e;
 }
 
@@ -119,9 +119,10 @@ TEST_CASE("Mohr-Coulomb does not depend on the orientation of the axes", "[mater
     Sym s0 = Sym::Zero(), de = Sym::Zero();
     s0[0] = -100e3 + 20e3 * u(rng), s0[1] = -60e3 + 20e3 * u(rng), s0[2] = -80e3 + 10e3 * u(rng), s0[3] = 10e3 * u(rng);
     for (int i = 0; i < 4; ++i) de[i] = 2e-3 * u(rng);
-    const Mat3 R = Eigen::AngleAxisd(3.0 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
+    const Mat3 R =
+        Eigen::AngleAxisd(3.0 * u(rng), Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized()).toRotationMatrix();
     const auto rotate = [&](const Sym& s) { return to_voigt(R * to_matrix(s) * R.transpose()); };
-    const auto a = mc.integrate(s0, de, 0.0);               // plane-strain closed form
+    const auto a = mc.integrate(s0, de, 0.0);                  // plane-strain closed form
     const auto b = mc.integrate(rotate(s0), rotate(de), 0.0);  // general 3D eigen path
     CAPTURE(k);
     CHECK((rotate(a.stress) - b.stress).norm() < 1e-8 * std::max(a.stress.norm(), 1e3));
@@ -173,7 +174,7 @@ TEST_CASE("softening takes c and phi to their residual values", "[materials][moh
   const double sp = std::sin(30 * kDeg), kp = (1 + sp) / (1 - sp), scp = 2 * 20e3 * std::cos(30 * kDeg) / (1 - sp);
   const double sr = std::sin(20 * kDeg), kr = (1 + sr) / (1 - sr), scr = 2 * 2e3 * std::cos(20 * kDeg) / (1 - sr);
   CAPTURE(peak, path.back(), plastic);
-  CHECK(peak == Approx(100e3 * kp + scp).epsilon(0.01));       // the peak strength first
+  CHECK(peak == Approx(100e3 * kp + scp).epsilon(0.01));  // the peak strength first
   CHECK(plastic > p.softening_strain);
   CHECK(-path.back() == Approx(100e3 * kr + scr).epsilon(0.005));  // then the residual one
 }

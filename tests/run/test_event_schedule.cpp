@@ -79,7 +79,8 @@ TEST_CASE("events: a run lands on its end exactly; an infinite run never ends by
   CHECK_THROWS_AS(s.begin_run(0.0, -1.0), InputError);
 }
 
-TEST_CASE("events: events that coincide within the tolerance are reached by one step and fire once", "[run][schedule]") {
+TEST_CASE("events: events that coincide within the tolerance are reached by one step and fire once",
+          "[run][schedule]") {
   EventSchedule s;
   const auto output = s.add(Spacing::Running, 0.1, 0.0);
   s.fired(output, 0.0);
