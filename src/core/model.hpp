@@ -219,11 +219,12 @@ class Model {
 
 // Calls X(Dim, Shape, Contact) and Y(Dim, Contact) for every variant of the step, to instantiate the
 // stages that the step's files define.
-#define SEISMPM_FOR_EACH_STEP_VARIANT(X, Y)                                                                   \
-  X(2, LinearShape, false)                                                                                    \
-  X(2, LinearShape, true) X(2, GimpShape, false) X(2, GimpShape, true) X(3, LinearShape, false)               \
-      X(3, LinearShape, true) X(3, GimpShape, false) X(3, GimpShape, true) Y(2, false) Y(2, true) Y(3, false) \
-          Y(3, true)
+// clang-format off
+#define SEISMPM_FOR_EACH_STEP_VARIANT(X, Y)                                                      \
+  X(2, LinearShape, false) X(2, LinearShape, true) X(2, GimpShape, false) X(2, GimpShape, true) \
+  X(3, LinearShape, false) X(3, LinearShape, true) X(3, GimpShape, false) X(3, GimpShape, true) \
+  Y(2, false) Y(2, true) Y(3, false) Y(3, true)
+// clang-format on
 
 extern template class Model<2>;
 extern template class Model<3>;
