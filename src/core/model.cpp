@@ -47,7 +47,8 @@ int Model<Dim>::add_body(const std::string& name, int ppc, bool rigid) {
 
 template <int Dim>
 int Model<Dim>::new_body(const std::string& name, int ppc, bool rigid) {
-  if (ppc < 1 || ppc > 16) throw InputError("body '" + name + "': ppc must be in [1, 16]");
+  if (ppc < 1 || ppc > kMaxParticlesPerCell)
+    throw InputError("body '" + name + "': ppc must be in [1, " + std::to_string(kMaxParticlesPerCell) + "]");
   if (bodies_.size() >= 65535) throw InputError("model: too many bodies");
   bodies_.push_back(Body{name, ppc, rigid, -1});
   contact_.add_body();

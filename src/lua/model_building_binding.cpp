@@ -12,7 +12,7 @@ namespace seismpm::lua {
 namespace {
 
 // The kernel's range (Model::new_body refuses the rest).
-const Key kPpc = arg::integer("ppc", "particles per cell along each axis").in(closed(1, 16)).def(2);
+const Key kPpc = arg::integer("ppc", "particles per cell along each axis").in(closed(1, kMaxParticlesPerCell)).def(2);
 const Key kShape = arg::custom("shape", "mpm.shape.*", "", "the region filled, inside the domain").required();
 
 const Key kBodyKeys[] = {
