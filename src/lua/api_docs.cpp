@@ -5,6 +5,8 @@
 #include <map>
 #include <sstream>
 
+#include "core/particle_fields.hpp"
+
 namespace seismpm::lua {
 
 namespace {
@@ -178,6 +180,32 @@ std::string help_text(const Function& f) {
   return os.str();
 }
 
+namespace {
+
+// The particle fields that b:field, probe:get, probes.csv and the .vtu files share, from their table.
+std::string particle_fields_markdown() {
+  std::ostringstream os;
+  os << "\n## Particle fields\n\n"
+     << "The names `b:field`, `probe:get` and `probe:series` take, and the columns of `probes.csv` "
+        "(`<probe>.<name>`),\n"
+     << "with the `.vtu` array (and component) each is written in.\n\n"
+     << "| field | `.vtu` array | unit | meaning |\n|---|---|---|---|\n";
+  for (const Field f : particle_fields(3)) {
+    const FieldInfo& fi = field_info(f);
+    const QuantityInfo& q = quantity_info(fi.quantity);
+    os << "| `" << fi.name << "` | ";
+    if (!q.vtu_array)
+      os << "the points";
+    else
+      os << "`" << q.name << "`";
+    if (q.components > 1) os << " [" << fi.component << "]";
+    os << " | " << q.unit << " | " << q.meaning << (fi.min_dim == 3 ? " (3D models)" : "") << " |\n";
+  }
+  return os.str();
+}
+
+}  // namespace
+
 std::string api_markdown() {
   std::ostringstream os;
   os << "# Lua API reference\n\n"
@@ -198,6 +226,7 @@ std::string api_markdown() {
       os << "\n```lua\n" << f.example << "\n```\n";
     }
   }
+  os << particle_fields_markdown();
   return os.str();
 }
 

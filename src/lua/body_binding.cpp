@@ -130,7 +130,7 @@ const Function kBody[] = {
      {},
      "A particle field as a Lua array in particle creation order. Fields: id body material mass volume density x y "
      "ux uy vx vy sxx syy szz sxy pressure q shear_strain plastic_strain yield (SI units, stress tension-positive, "
-     "pressure compression-positive).",
+     "pressure compression-positive; units and meanings under Particle fields).",
      "local uy = soil:field(\"uy\"); print(#uy, uy[1])"},
     {"body:set_velocity",
      &guarded<body_set_velocity>,
