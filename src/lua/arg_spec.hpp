@@ -47,46 +47,25 @@ struct Key {
   std::span<const Key> keys{};          // Table
 
   // Modifiers, so that a table reads as one line per key: arg::number("cell", "m", "cell size").in(above(0)).required()
-  constexpr Key required() const {
-    Key k = *this;
-    k.mandatory = true;
-    return k;
-  }
-  constexpr Key def(double v) const {
-    Key k = *this;
-    k.number = v;
-    return k;
-  }
+  constexpr Key required() const { return with(&Key::mandatory, true); }
+  constexpr Key def(double v) const { return with(&Key::number, v); }
   constexpr Key def_point(double x, double y) const {
     Key k = *this;
     k.point[0] = x;
     k.point[1] = y;
     return k;
   }
-  constexpr Key def_text(const char* v) const {
-    Key k = *this;
-    k.text = v;
-    return k;
-  }
-  constexpr Key shown(const char* about) const {
-    Key k = *this;
-    k.shown_default = about;
-    return k;
-  }
-  constexpr Key in(Interval r) const {
-    Key k = *this;
-    k.range = r;
-    return k;
-  }
-  constexpr Key in_text(const char* t) const {
-    Key k = *this;
-    k.range_text = t;
-    return k;
-  }
+  constexpr Key def_text(const char* v) const { return with(&Key::text, v); }
+  constexpr Key shown(const char* about) const { return with(&Key::shown_default, about); }
+  constexpr Key in(Interval r) const { return with(&Key::range, r); }
+  constexpr Key in_text(const char* t) const { return with(&Key::range_text, t); }
   // The kernel checks `r`: the help shows it, Args leaves it to the kernel.
-  constexpr Key checked_by_kernel(Interval r) const {
-    Key k = in(r);
-    k.forwarded = true;
+  constexpr Key checked_by_kernel(Interval r) const { return in(r).with(&Key::forwarded, true); }
+  // A copy with one member set.
+  template <class T, class V>
+  constexpr Key with(T Key::*member, V value) const {
+    Key k = *this;
+    k.*member = value;
     return k;
   }
   constexpr bool has_number_default() const { return number == number; }  // not NaN
