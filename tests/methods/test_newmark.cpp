@@ -75,7 +75,8 @@ TEST_CASE("Newmark block: a rectangular pulse against the closed form", "[method
     // Read as piecewise linear, a pulse sampled every dt falls from A g to 0 over one step, which adds
     // dt/2 to its duration: d grows by about dt/t0 (2.5 % at dt = 5 ms, 0.25 % at 0.5 ms).
     for (double dt : {0.005, 0.0005}) {
-      const NewmarkResult n = newmark_rigid_block(pulse(A, t0, dt, dt, 1.0).t, pulse(A, t0, dt, dt, 1.0).a, ky);
+      const Record r = pulse(A, t0, dt, dt, 1.0);
+      const NewmarkResult n = newmark_rigid_block(r.t, r.a, ky);
       const double lengthened = pulse_displacement(A, t0 + dt / 2, ky);
       CAPTURE(dt, n.displacement, lengthened);
       CHECK(n.displacement == Approx(lengthened).epsilon(0.1 * dt / t0));
