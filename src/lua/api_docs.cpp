@@ -130,6 +130,7 @@ const std::vector<ApiSection>& api_sections() {
       {"Materials", material_functions()},
       {"Shapes", shape_functions()},
       {"Histories", history_functions()},
+      {"Simple methods beside MPM: Newmark's sliding block", methods_functions()},
       {"Plots", plot_functions()},
       {"Scenario parameters and the session", session_functions()},
       {"Geometry (Lua library, lua/seismpm.lua)", library_functions()},

@@ -20,6 +20,7 @@ std::span<const Function> probe_functions();
 std::span<const Function> material_functions();
 std::span<const Function> shape_functions();
 std::span<const Function> history_functions();
+std::span<const Function> methods_functions();  // mpm.newmark
 std::span<const Function> plot_functions();
 std::span<const Function> session_functions();  // mpm.param, mpm.version, mpm.out_dir
 std::span<const Function> help_functions();

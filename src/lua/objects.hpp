@@ -99,6 +99,7 @@ void open_probe(lua_State* L);
 void open_material(lua_State* L);
 void open_shape(lua_State* L);
 void open_history(lua_State* L);
+void open_methods(lua_State* L);
 void open_help(lua_State* L);
 void open_plot(lua_State* L);
 void open_library_support(lua_State* L);

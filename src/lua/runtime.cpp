@@ -130,6 +130,7 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   open_material(L_);
   open_shape(L_);
   open_history(L_);
+  open_methods(L_);
   open_plot(L_);
   open_help(L_);
   open_library_support(L_);
