@@ -35,6 +35,8 @@ class TableHistory : public History {
   std::string describe() const override;
   const std::vector<double>& times() const { return t_; }
   const std::vector<double>& values() const { return v_; }
+  // Where the table came from ("table", a file name), without its point count.
+  const std::string& source() const { return source_; }
   double start() const { return t_.front(); }
   double end() const { return t_.back(); }
 

@@ -39,7 +39,7 @@ int newmark(lua_State* L) {
   const std::string direction = a.choice("direction");
   const NewmarkResult r = newmark_rigid_block(record.times(), record.values(), ky, parse_polarity(direction));
   std::ostringstream about;
-  about << "Newmark rigid-block displacement (m), ky = " << ky << " g, " << direction << ", on " << record.describe();
+  about << "Newmark rigid-block displacement (m), ky = " << ky << " g, " << direction << ", on " << record.source();
   lua_pushnumber(L, r.displacement);
   push_object(L, HistoryObject{std::make_shared<TableHistory>(r.times, r.history, about.str())});
   return 2;
