@@ -131,6 +131,7 @@ const std::vector<ApiSection>& api_sections() {
       {"Shapes", shape_functions()},
       {"Histories", history_functions()},
       {"Plots", plot_functions()},
+      {"Limit equilibrium", lem_functions()},
       {"Scenario parameters and the session", session_functions()},
       {"Geometry (Lua library, lua/seismpm.lua)", library_functions()},
       {"Console", help_functions()},
