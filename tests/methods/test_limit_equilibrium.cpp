@@ -115,3 +115,13 @@ TEST_CASE("kh lowers the factor of safety, and at kh = ky the factor is 1", "[le
   CHECK(w.fos < 1);
   CHECK(w.ky == 0);
 }
+
+TEST_CASE("A vertical cut in purely cohesive soil stands to Taylor's H_c = 3.83 c / gamma", "[lem]") {
+  // Taylor's stability number c / (gamma H F) = 0.261 for beta = 90 degrees, phi = 0: a toe circle (for
+  // slopes steeper than 53 degrees the depth factor does not matter, so the base lies deep here). The
+  // face is vertical within 1 mm.
+  const LemSlope cut{{{-40, 10}, {0, 10}, {1e-3, 0}, {40, 0}}, {{-30, {20e3, 20e3, 0}}}, -20};
+  const auto r = critical_circle(cut, 0);
+  CHECK(20e3 / (20e3 * 10 * r.fos) == Approx(0.261).epsilon(0.01));
+  CHECK(r.circle.yc - std::sqrt(r.circle.r * r.circle.r - r.circle.xc * r.circle.xc) == Approx(0).margin(0.05));
+}
