@@ -63,3 +63,25 @@ TEST_CASE("mpm.lem: errors name the key or the material", "[lua][lem][errors]") 
     mpm.lem{ model = m })"),
              Catch::Contains("has no shear strength"));
 }
+
+TEST_CASE("mpm.lem: bodies of two materials make two horizontal bands", "[lua][lem]") {
+  using namespace seismpm;
+  // The slope above y = 6 m is of a weaker soil (c = 5 kPa).
+  const LemSlope slope{{{-20, 12}, {0, 12}, {20, 2}, {45, 2}}, {{6, {20e3, 5e3, 20}}, {0, {20e3, 10e3, 20}}}, 0};
+  LuaFixture f;
+  const std::string error = f.error_of(R"(
+    local m = mpm.model{ domain = {{-20, 0}, {45, 14}}, cell = 0.5, gravity = {0, -10} }
+    local function soil(c)
+      return mpm.material.mohr_coulomb{ density = 2000, young = 50e6, poisson = 0.3, cohesion = c, friction = 20 }
+    end
+    m:body{ name = "lower", material = soil(10e3),
+            shape = mpm.shape.polygon{ {-20, 0}, {45, 0}, {45, 2}, {20, 2}, {12, 6}, {-20, 6} } }
+    m:body{ name = "upper", material = soil(5e3), shape = mpm.shape.polygon{ {-20, 6}, {12, 6}, {0, 12}, {-20, 12} } }
+    fos = mpm.lem{ model = m }.fos
+  )");
+  REQUIRE(error == "");
+  lua_getglobal(f.runtime.state(), "fos");
+  const double fos = lua_tonumber(f.runtime.state(), -1);
+  CHECK(fos == Approx(critical_circle(slope, 0).fos).epsilon(0.02));
+  CHECK(fos < 1.3);
+}
