@@ -85,3 +85,22 @@ TEST_CASE("mpm.lem: bodies of two materials make two horizontal bands", "[lua][l
   CHECK(fos == Approx(critical_circle(slope, 0).fos).epsilon(0.02));
   CHECK(fos < 1.3);
 }
+
+TEST_CASE("mpm.lem: a Drucker-Prager slope on a rigid base gives the Mohr-Coulomb factor", "[lua][lem]") {
+  using namespace seismpm;
+  // The rigid base's particles are not soil: the surface and the base come from the slope alone.
+  const LemSlope slope{{{-20, 12}, {0, 12}, {20, 2}, {45, 2}}, {{0, {20e3, 10e3, 20}}}, 0};
+  LuaFixture f;
+  const std::string error = f.error_of(R"(
+    local m = mpm.model{ domain = {{-20, -1}, {45, 14}}, cell = 0.5, gravity = {0, -10} }
+    local soil = mpm.material.drucker_prager{ density = 2000, young = 50e6, poisson = 0.3, cohesion = 10e3,
+                                              friction = 20 }
+    m:rigid{ name = "base", shape = mpm.shape.rectangle{ -20, -1, 45, 0 }, velocity = {0, 0} }
+    m:body{ name = "slope", material = soil,
+            shape = mpm.shape.polygon{ {-20, 0}, {45, 0}, {45, 2}, {20, 2}, {0, 12}, {-20, 12} } }
+    fos = mpm.lem{ model = m }.fos
+  )");
+  REQUIRE(error == "");
+  lua_getglobal(f.runtime.state(), "fos");
+  CHECK(lua_tonumber(f.runtime.state(), -1) == Approx(critical_circle(slope, 0).fos).epsilon(0.02));
+}
