@@ -111,9 +111,15 @@ std::vector<double> crossings(const LemSlope& s, const LemCircle& c) {
 }
 
 // Entry and exit of the sliding mass: the widest span between crossings where the ground lies above
-// the arc. Nothing when the mass would reach past the polyline's ends or into the firm base.
+// the arc. The polyline's ends count as crossings where the arc passes under them, so that a mass that
+// would reach past an end (soil the slope does not describe) is found, and the circle rejected; so is
+// one that enters the firm base.
 std::optional<std::pair<double, double>> sliding_span(const LemSlope& s, const LemCircle& c) {
-  const auto xs = crossings(s, c);
+  auto xs = crossings(s, c);
+  const double x0 = s.surface.front().x, x1 = s.surface.back().x;
+  auto under = [&](double xe) { return std::abs(xe - c.xc) < c.r && arc(c, xe) < ground(s, xe); };
+  if (under(x0)) xs.insert(xs.begin(), x0);
+  if (under(x1)) xs.push_back(x1);
   std::optional<std::pair<double, double>> best;
   for (std::size_t i = 1; i < xs.size(); ++i) {
     const double xm = 0.5 * (xs[i - 1] + xs[i]);
@@ -121,10 +127,8 @@ std::optional<std::pair<double, double>> sliding_span(const LemSlope& s, const L
         (!best || xs[i] - xs[i - 1] > best->second - best->first))
       best = std::make_pair(xs[i - 1], xs[i]);
   }
-  for (double xe : {s.surface.front().x, s.surface.back().x})
-    if (std::abs(xe - c.xc) < c.r && arc(c, xe) < ground(s, xe) && best && xe > best->first && xe < best->second)
-      return std::nullopt;
-  if (best && c.xc > best->first && c.xc < best->second && c.yc - c.r < s.base - 1e-9 * c.r) return std::nullopt;
+  if (!best || (best->first == x0 && under(x0)) || (best->second == x1 && under(x1))) return std::nullopt;
+  if (c.xc > best->first && c.xc < best->second && c.yc - c.r < s.base - 1e-9 * c.r) return std::nullopt;
   return best;
 }
 

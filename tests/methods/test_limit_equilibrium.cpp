@@ -94,8 +94,9 @@ TEST_CASE("Bands: two equal bands are one soil, and a weak upper band lowers the
 }
 
 TEST_CASE("Circles that enter the firm base or miss the slope are not admissible", "[lem]") {
-  CHECK_FALSE(bishop_fos(griffiths_lane(), {8, 22, 25}, 0));  // reaches 3 m below the base
-  CHECK_FALSE(bishop_fos(griffiths_lane(), {8, 40, 5}, 0));   // stays in the air
+  CHECK_FALSE(bishop_fos(griffiths_lane(), {8, 22, 25}, 0));    // reaches 3 m below the base
+  CHECK_FALSE(bishop_fos(griffiths_lane(), {8, 40, 5}, 0));     // stays in the air
+  CHECK_FALSE(bishop_fos(griffiths_lane(), {-40, 20, 15}, 0));  // runs past the surface's left end
   LemSlope bad = griffiths_lane();
   bad.surface[1].x = -50;
   CHECK_THROWS_AS(critical_circle(bad, 0), InputError);
