@@ -132,6 +132,7 @@ const std::vector<ApiSection>& api_sections() {
       {"Histories", history_functions()},
       {"Simple methods beside MPM: Newmark's sliding block", methods_functions()},
       {"Plots", plot_functions()},
+      {"Limit equilibrium", lem_functions()},
       {"Scenario parameters and the session", session_functions()},
       {"Geometry (Lua library, lua/seismpm.lua)", library_functions()},
       {"Console", help_functions()},

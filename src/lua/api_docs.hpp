@@ -24,6 +24,7 @@ std::span<const Function> methods_functions();  // mpm.newmark
 std::span<const Function> plot_functions();
 std::span<const Function> session_functions();  // mpm.param, mpm.version, mpm.out_dir
 std::span<const Function> help_functions();
+std::span<const Function> lem_functions();
 std::span<const Function> library_functions();  // lua/seismpm.lua
 
 struct ApiSection {

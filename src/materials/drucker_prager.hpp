@@ -39,6 +39,7 @@ class DruckerPrager : public Material {
   double p_wave_modulus() const override { return elastic_.p_wave(); }
   double shear_modulus() const override { return elastic_.shear(); }
   double bulk_modulus() const override { return elastic_.bulk(); }
+  const DruckerPragerParameters& parameters() const { return p_; }
   const DruckerPragerConstants& constants() const { return c_; }
   void update_stress(const StressUpdate& batch) const override;
   bool tensionless() const override { return p_.tension == 0.0; }
