@@ -82,7 +82,13 @@ void push_result(lua_State* L, const LemResult& r) {
   lua_createtable(L, 0, 4);
   push_number_field(L, "fos", r.fos);
   push_number_field(L, "ky", r.ky);
-  lua_createtable(L, 0, 3);
+  // The circle both as {xc, yc, r} (a list, as the API writes it) and by name.
+  lua_createtable(L, 3, 3);
+  const double circle[3] = {r.circle.xc, r.circle.yc, r.circle.r};
+  for (int k = 0; k < 3; ++k) {
+    lua_pushnumber(L, circle[k]);
+    lua_rawseti(L, -2, k + 1);
+  }
   push_number_field(L, "xc", r.circle.xc);
   push_number_field(L, "yc", r.circle.yc);
   push_number_field(L, "r", r.circle.r);

@@ -28,6 +28,7 @@ TEST_CASE("mpm.lem on a model's slope matches the core solver on the same geomet
     local r = mpm.lem{ model = m }
     fos, ky, xc, yc, radius, points = r.fos, r.ky, r.circle.xc, r.circle.yc, r.circle.r, #r.surface
     first_x, last_x = r.surface[1][1], r.surface[#r.surface][1]
+    listed = r.circle[1] == r.circle.xc and r.circle[2] == r.circle.yc and r.circle[3] == r.circle.r
     fos_kh = mpm.lem{ model = m, kh = 0.1, search = { centres = {{0, 12}, {25, 40}}, radii = {5, 40} } }.fos
   )");
   REQUIRE(error == "");
@@ -41,6 +42,9 @@ TEST_CASE("mpm.lem on a model's slope matches the core solver on the same geomet
   CHECK(global("fos") == Approx(core.fos).epsilon(0.02));
   CHECK(global("ky") == Approx(core.ky).epsilon(0.05));
   CHECK(global("points") == 81);
+  lua_getglobal(L, "listed");
+  CHECK(lua_toboolean(L, -1));  // circle = {xc, yc, r} as a list too
+  lua_pop(L, 1);
   CHECK(global("first_x") < global("last_x"));
   CHECK(global("yc") - global("radius") >= -1e-9);
   CHECK(global("fos_kh") == Approx(critical_circle(slope, 0.1).fos).epsilon(0.02));
