@@ -41,14 +41,11 @@ class ParticleSupport {
 
   template <class Shape>
   std::vector<Stencil<Dim, Shape::K>>& stencils() {
-    if constexpr (std::is_same_v<Shape, LinearShape>)
-      return linear_;
-    else
-      return gimp_;
+    return of_shape<Shape>(*this);
   }
   template <class Shape>
   const std::vector<Stencil<Dim, Shape::K>>& stencils() const {
-    return const_cast<ParticleSupport*>(this)->stencils<Shape>();
+    return of_shape<Shape>(*this);
   }
 
   CellIndex<Dim> cells;
@@ -56,6 +53,15 @@ class ParticleSupport {
   ScatterSchedule schedule;
 
  private:
+  // The stencils of one shape, for a const or a mutable support alike.
+  template <class Shape, class Self>
+  static auto& of_shape(Self& s) {
+    if constexpr (std::is_same_v<Shape, LinearShape>)
+      return s.linear_;
+    else
+      return s.gimp_;
+  }
+
   std::vector<Stencil<Dim, LinearShape::K>> linear_;
   std::vector<Stencil<Dim, GimpShape::K>> gimp_;
 };

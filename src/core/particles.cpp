@@ -14,8 +14,8 @@ T zero() {
 }
 
 template <class T>
-void apply_order(std::vector<T>& field, const std::vector<int>& order, std::vector<T>& scratch) {
-  scratch.resize(field.size());
+void apply_order(std::vector<T>& field, const std::vector<int>& order) {
+  std::vector<T> scratch(field.size());
   const int n = static_cast<int>(order.size());
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k) scratch[k] = field[order[k]];
@@ -41,10 +41,7 @@ std::size_t Particles<Dim>::add(const Vec<Dim>& position, double particle_mass, 
 
 template <int Dim>
 void Particles<Dim>::permute(const std::vector<int>& order) {
-  for_each_member([&order](auto& member) {
-    std::decay_t<decltype(member)> scratch;
-    apply_order(member, order, scratch);
-  });
+  for_each_member([&order](auto& member) { apply_order(member, order); });
 }
 
 template <int Dim>
