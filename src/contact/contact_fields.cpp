@@ -169,7 +169,7 @@ void ContactFields<Dim>::mark_shared_nodes(const Particles<Dim>& particles, cons
        << format_point<Dim>(grid.node_position(overflow));
     throw SimulationError(os.str());
   }
-  shared_.build();
+  shared_.build(rules_);
   slot_reaction_.assign(shared_.mass.size(), Vec<Dim>::Zero());
   flag_cells_near_shared<Shape>(grid, support.cells);
 }
@@ -357,7 +357,71 @@ void ContactFields<Dim>::resolve_node(int k, bool updated, const Grid<Dim>& grid
     S.velocity[s] = nf.velocity[j];
     for (int d = 0; d < Dim; ++d)
       if (mask >> d & 1) S.velocity[s][d] = 0.0;
-    if (updated) S.acceleration[s] = (S.velocity[s] - S.momentum[s] / S.mass[s]) / dt;
+    if (updated) S.acceleration[s] = (S.velocity[s] - group_start_velocity(k, nf, j, min_mass)) / dt;
+  }
+}
+
+// The velocity at the start of the step of the glued group slot j belongs to. Glued fields move as
+// one body: a particle's FLIP increment must be the group's velocity change, as in a single field;
+// measured from its own field's start velocity it would pull every particle at the interface toward
+// the group's velocity on each step.
+template <int Dim>
+Vec<Dim> ContactFields<Dim>::group_start_velocity(int k, const NodeFields<Dim>& nf, int j, double min_mass) const {
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
+  const auto& S = shared_;
+  double mass = 0.0;
+  Vec<Dim> momentum = Vec<Dim>::Zero();
+  for (int l = 0; l < nf.count; ++l) {
+    const int s = k * kSlots + l;
+    if (nf.group[l] != nf.group[j] || rules_.rigid(nf.field[l]) || !(S.mass[s] > min_mass)) continue;
+    mass += S.mass[s];
+    momentum += S.momentum[s];
+  }
+  return momentum / mass;
+}
+
+// Local damping of the fields' own forces where fields meet, except where a rigid field is present.
+// A glued group is damped as the one body it is, on its net force: damping each member on its own
+// force would act on the large, opposite internal forces across the interface, which do not vanish
+// at equilibrium, and keep the interface moving.
+template <int Dim>
+void ContactFields<Dim>::damp_forces(double alpha, double min_mass) {
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
+  auto& S = shared_;
+  const int count = S.count();
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < count; ++k) {
+    if (held(k)) continue;
+    NodeFields<Dim> nf;
+    nf.count = S.fields(k);
+    for (int j = 0; j < nf.count; ++j) {
+      const int s = k * kSlots + j;
+      nf.field[j] = S.field_of_slot(s);
+      nf.mass[j] = S.mass[s];
+      nf.gradient[j].setZero();
+      nf.velocity[j].setZero();
+    }
+    const contact_detail::FieldGroups<Dim> g(nf, rules_, min_mass);
+    for (int j = 0; j < nf.count; ++j) {
+      const bool alone = !g.active[j];
+      if (!alone && !g.representative(j)) continue;
+      Vec<Dim> force = Vec<Dim>::Zero(), momentum = Vec<Dim>::Zero();
+      for (int l = 0; l < nf.count; ++l)
+        if (alone ? l == j : g.active[l] && g.group[l] == j) {
+          force += S.force[k * kSlots + l];
+          momentum += S.momentum[k * kSlots + l];
+        }
+      for (int d = 0; d < Dim; ++d) {
+        const double v = momentum[d];  // same sign as the group's velocity
+        const double sign = (v > 0.0) - (v < 0.0);
+        const double damping = -(alpha * std::abs(force[d]) * sign);
+        for (int l = 0; l < nf.count; ++l)
+          if (alone ? l == j : g.active[l] && g.group[l] == j) {
+            const int s = k * kSlots + l;
+            S.force[s][d] += alone ? damping : (S.mass[s] / g.mass[j]) * damping;
+          }
+      }
+    }
   }
 }
 

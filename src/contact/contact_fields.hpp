@@ -16,6 +16,7 @@
 #include "core/particle_support.hpp"
 #include "core/particles.hpp"
 #include "core/step_context.hpp"
+#include "node_contact.hpp"
 #include "rigid_body.hpp"
 #include "shared_nodes.hpp"
 
@@ -66,6 +67,9 @@ class ContactFields {
   // update the accelerations are rebuilt from the corrected velocities (so FLIP sees the correction)
   // and the force each rigid body exerts is summed.
   void resolve(VelocityStage stage, const Grid<Dim>& grid, double dt, double min_mass);
+  // Local (Cundall) damping alpha of the fields' own forces at the shared nodes without a rigid
+  // field, glued groups on their net force (the model damps the common fields).
+  void damp_forces(double alpha, double min_mass);
   // The MUSL re-map of each deformable field's momentum at the shared nodes; rigid slots keep theirs.
   template <class Shape>
   void remap_momentum(const Particles<Dim>& particles, const Grid<Dim>& grid, const ParticleSupport<Dim>& support,
@@ -91,6 +95,7 @@ class ContactFields {
   template <class Shape>
   void flag_cells_near_shared(const Grid<Dim>& grid, const CellIndex<Dim>& cells);
   void resolve_node(int k, bool updated, const Grid<Dim>& grid, double dt, double min_mass);
+  Vec<Dim> group_start_velocity(int k, const NodeFields<Dim>& nf, int j, double min_mass) const;
   void sum_reactions(double dt);
 
   std::vector<ContactPair> pairs_;

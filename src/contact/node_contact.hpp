@@ -24,6 +24,8 @@ struct NodeFields {
   double mass[kMax];
   Vec<Dim> gradient[kMax];
   Vec<Dim> velocity[kMax];
+  // Out: the representative slot of each field's glued group (its own slot when alone or inactive).
+  int group[kMax];
 };
 
 namespace contact_detail {
@@ -182,8 +184,10 @@ void resolve_contact(NodeFields<Dim>& n, const ContactRules& rules, double min_m
         changed = contact_detail::resolve_rigid_field(g, n, rules, r, cell, dt, force_on) || changed;
     if (!changed) break;
   }
-  for (int j = 0; j < n.count; ++j)
+  for (int j = 0; j < n.count; ++j) {
+    n.group[j] = g.group[j];
     if (g.active[j]) n.velocity[j] = g.velocity[g.group[j]];
+  }
 }
 
 }  // namespace seismpm

@@ -10,8 +10,21 @@ void SharedNodes<Dim>::clear(int node_count) {
   index_.assign(node_count, -1);
 }
 
+namespace {
+
+bool kept_apart(const FieldSet& set, int count, const ContactRules& rules) {
+  for (int a = 0; a < count; ++a) {
+    if (rules.rigid(set[a])) return true;
+    for (int b = a + 1; b < count; ++b)
+      if (!rules.glued(set[a], set[b])) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 template <int Dim>
-void SharedNodes<Dim>::build() {
+void SharedNodes<Dim>::build(const ContactRules& rules) {
   node_.clear();
   fields_.clear();
   const int n = static_cast<int>(present_.size());
@@ -19,6 +32,7 @@ void SharedNodes<Dim>::build() {
     if (present_[i][1] < 0) continue;  // one field or none: the common grid fields serve
     int c = 2;
     while (c < kSlots && present_[i][c] >= 0) ++c;
+    if (!kept_apart(present_[i], c, rules)) continue;
     index_[i] = static_cast<int>(node_.size());
     node_.push_back(i);
     fields_.push_back(c);

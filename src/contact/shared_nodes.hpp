@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "contact_rules.hpp"
 #include "core/types.hpp"
 
 namespace seismpm {
@@ -36,8 +37,10 @@ class SharedNodes {
   // Records that `field` touches grid node `node`. Race-free when no two threads mark the same node
   // (the coloured scatter). Returns false when the node has kSlots other fields already.
   bool mark(int node, int field) { return add_field(present_[node], field); }
-  // Lists the nodes with two or more fields and zeroes their slots.
-  void build();
+  // Lists the nodes where fields meet that must be kept apart (a rigid field, or two fields with a
+  // declared contact) and zeroes their slots. Where only glued deformable fields meet, the common
+  // grid fields serve: they are one body there.
+  void build(const ContactRules& rules);
 
   int count() const { return static_cast<int>(node_.size()); }
   // Shared-node index of grid node i, or -1.

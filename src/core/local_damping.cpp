@@ -33,25 +33,7 @@ void LocalDamping<Dim>::nodal_forces(Model<Dim>& model, const StepContext&) {
       g.force[i][d] -= alpha * std::abs(g.force[i][d]) * s;
     }
   }
-  // Each contact field's own forces where fields meet; not where a rigid body is present: there the
-  // out-of-balance force is what the contact must carry (damping it first would under-read the normal
-  // force, the friction limit and the reaction), and the rigid body fixes the motion anyway.
-  auto& contact = model.contact();
-  auto& sh = contact.nodes();
-  const int count = sh.count();
-  constexpr int kSlots = SharedNodes<Dim>::kSlots;
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < count; ++k) {
-    if (contact.held(k)) continue;
-    for (int j = 0; j < sh.fields(k); ++j) {
-      const int s = k * kSlots + j;
-      for (int d = 0; d < Dim; ++d) {
-        const double v = sh.momentum[s][d];
-        const double sign = (v > 0.0) - (v < 0.0);
-        sh.force[s][d] -= alpha * std::abs(sh.force[s][d]) * sign;
-      }
-    }
-  }
+  model.contact().damp_forces(alpha, eps);
 }
 
 template class LocalDamping<2>;

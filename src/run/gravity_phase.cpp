@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <numeric>
+#include <sstream>
 
 #include "core/error.hpp"
+#include "core/format.hpp"
 
 namespace seismpm {
 
@@ -29,6 +31,42 @@ std::string equilibrium_text(const EquilibriumMonitor<Dim>& e) {
   std::snprintf(buf, sizeof buf, "unbalanced %.1e, kinetic %.1e of peak (tol %.0e)", e.force_ratio(), e.energy_ratio(),
                 e.tolerance());
   return buf;
+}
+
+template <int Dim>
+std::string motion_summary(const Model<Dim>& model, int count) {
+  const auto& P = model.particles();
+  const auto& bodies = model.bodies();
+  std::vector<std::size_t> moving;
+  std::vector<double> body_speed(bodies.size(), 0.0);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    if (bodies[P.body[p]].rigid) continue;
+    moving.push_back(p);
+    body_speed[P.body[p]] = std::max(body_speed[P.body[p]], P.v[p].norm());
+  }
+  const auto faster = [&](std::size_t a, std::size_t b) {
+    const double va = P.v[a].norm(), vb = P.v[b].norm();
+    return va != vb ? va > vb : a < b;  // ties by index: the same text for any thread count
+  };
+  const std::size_t shown = std::min<std::size_t>(moving.size(), static_cast<std::size_t>(std::max(count, 0)));
+  std::partial_sort(moving.begin(), moving.begin() + shown, moving.end(), faster);
+  std::ostringstream os;
+  os.precision(3);
+  os << "the fastest particles:";
+  for (std::size_t k = 0; k < shown; ++k) {
+    const std::size_t p = moving[k];
+    os << (k ? "; " : " ") << "'" << bodies[P.body[p]].name << "' at " << format_point<Dim>(P.x[p]) << " m, "
+       << P.v[p].norm() << " m/s";
+  }
+  os << " (largest speed per body:";
+  bool first = true;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (bodies[b].rigid) continue;
+    os << (first ? " " : ", ") << "'" << bodies[b].name << "' " << body_speed[b] << " m/s";
+    first = false;
+  }
+  os << ")";
+  return os.str();
 }
 
 template <int Dim>
@@ -91,6 +129,8 @@ template class EquilibriumMonitor<2>;
 template class EquilibriumMonitor<3>;
 template std::string equilibrium_text<2>(const EquilibriumMonitor<2>&);
 template std::string equilibrium_text<3>(const EquilibriumMonitor<3>&);
+template std::string motion_summary<2>(const Model<2>&, int);
+template std::string motion_summary<3>(const Model<3>&, int);
 template void set_k0_stresses<2>(Model<2>&, double);
 template void set_k0_stresses<3>(Model<3>&, double);
 

@@ -48,6 +48,12 @@ class EquilibriumMonitor {
 template <int Dim>
 std::string equilibrium_text(const EquilibriumMonitor<Dim>& e);
 
+// Where a model still moves: "the fastest particles: 'upper' at (1.94, 2.06) m, 0.031 m/s; ...", the
+// `count` fastest deformable particles by speed with their body, position and speed, and each moving
+// body's largest speed. For the message of a gravity phase that found no equilibrium.
+template <int Dim>
+std::string motion_summary(const Model<Dim>& model, int count = 3);
+
 // K0 initial stresses for level ground: on every deformable particle sigma_v = rho g depth, where
 // the overburden is the mass per unit width of the deformable particles above it in its grid column
 // (its own half included), and sigma_h = k0 sigma_v (both horizontal axes, and sigma_zz in plane

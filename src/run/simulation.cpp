@@ -149,8 +149,8 @@ GravityPhaseResult Simulation<Dim>::gravity_phase(const GravityPhaseSettings& g)
     std::ostringstream os;
     os << "no static equilibrium within max_time = " << g.max_time << " s: out-of-balance force "
        << equilibrium.force_ratio() << " of the external force, kinetic energy " << equilibrium.energy_ratio()
-       << " of its peak (tolerance " << g.tolerance
-       << "). Something keeps moving: a slope steeper than its strength allows, a body without support, or too "
+       << " of its peak (tolerance " << g.tolerance << "); " << motion_summary(model_)
+       << ". Something keeps moving there: a slope steeper than its strength allows, a body without support, or too "
           "short a max_time; the outputs show the state at t = "
        << model_.time() << " s";
     throw SimulationError(os.str());

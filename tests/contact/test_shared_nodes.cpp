@@ -14,6 +14,15 @@ FieldSet empty_set() {
   s.fill(-1);
   return s;
 }
+
+// `fields` deformable fields, every two in declared (smooth) contact: every meeting is kept apart.
+ContactRules all_in_contact(int fields) {
+  ContactRules r;
+  r.reset(fields);
+  for (int a = 0; a < fields; ++a)
+    for (int b = a + 1; b < fields; ++b) r.set_friction(a, b, 0.0);
+  return r;
+}
 }  // namespace
 
 TEST_CASE("a field set takes up to four fields once each", "[contact][shared_nodes]") {
@@ -42,7 +51,7 @@ TEST_CASE("nodes of two or more fields are shared, in grid order", "[contact][sh
   CHECK(sn.mark(7, 2));
   CHECK(sn.mark(7, 0));
   CHECK(sn.mark(7, 1));
-  sn.build();
+  sn.build(all_in_contact(24));
   REQUIRE(sn.count() == 2);
   CHECK(sn.node(0) == 3);
   CHECK(sn.node(1) == 7);
@@ -74,7 +83,7 @@ TEST_CASE("nodes of two or more fields are shared, in grid order", "[contact][sh
     CHECK(sn.acceleration.size() == 8);
     sn.mass[6] = 1.5;
     sn.velocity[6] = Vec<2>(1.0, 2.0);
-    sn.build();  // zeroes them again
+    sn.build(all_in_contact(24));  // zeroes them again
     CHECK(sn.mass[6] == 0.0);
     CHECK(sn.velocity[6] == Vec<2>::Zero());
   }
@@ -86,7 +95,7 @@ TEST_CASE("a node takes kSlots fields; a further one is refused", "[contact][sha
   for (int f = 0; f < SharedNodes<3>::kSlots; ++f) CHECK(sn.mark(2, 10 + f));
   CHECK_FALSE(sn.mark(2, 20));
   CHECK(sn.mark(2, 12));  // one it has
-  sn.build();
+  sn.build(all_in_contact(24));
   REQUIRE(sn.count() == 1);
   CHECK(sn.fields(0) == 4);
   CHECK(sn.slot(0, 13) == 3);
@@ -98,19 +107,40 @@ TEST_CASE("clear forgets every node's fields", "[contact][shared_nodes]") {
   sn.clear(6);
   sn.mark(1, 0);
   sn.mark(1, 1);
-  sn.build();
+  sn.build(all_in_contact(24));
   REQUIRE(sn.count() == 1);
   const int node_count = GENERATE(6, 9);  // the grid may change size between steps
   sn.clear(node_count);
   CHECK(sn.index(1) == -1);
   sn.mark(4, 1);
-  sn.build();
+  sn.build(all_in_contact(24));
   CHECK(sn.count() == 0);
   CHECK(sn.mass.empty());
   sn.mark(node_count - 1, 0);
   sn.mark(node_count - 1, 3);
-  sn.build();
+  sn.build(all_in_contact(24));
   REQUIRE(sn.count() == 1);
   CHECK(sn.node(0) == node_count - 1);
   CHECK(sn.slot(0, 3) == 1);
+}
+
+TEST_CASE("where only glued deformable fields meet, no node is shared", "[contact][shared_nodes]") {
+  // Fields 0, 1, 2 deformable; 1 and 2 in contact; field 3 rigid (glued to all: no pair declared).
+  ContactRules rules;
+  rules.reset(4);
+  rules.set_friction(1, 2, 0.3);
+  rules.set_rigid(3, true);
+  SharedNodes<2> sn;
+  sn.clear(8);
+  sn.mark(1, 0), sn.mark(1, 1);                 // glued: one body there
+  sn.mark(2, 1), sn.mark(2, 2);                 // a declared pair
+  sn.mark(3, 0), sn.mark(3, 3);                 // a rigid field, glued or not, has its own velocity
+  sn.mark(4, 0), sn.mark(4, 1), sn.mark(4, 2);  // a pair among glued fields
+  sn.build(rules);
+  REQUIRE(sn.count() == 3);
+  CHECK(sn.index(1) == -1);
+  CHECK(sn.node(0) == 2);
+  CHECK(sn.node(1) == 3);
+  CHECK(sn.node(2) == 4);
+  CHECK(sn.fields(2) == 3);
 }

@@ -130,7 +130,9 @@ TEST_CASE("a gravity phase that finds no equilibrium says so", "[run][gravity][e
   sim.model().fill_box(sim.model().add_body("falling", 2), mat, Vec<2>(0.1, 0.6), Vec<2>(0.3, 0.9));
   CHECK_THROWS_WITH(sim.gravity_phase(GravityPhaseSettings{0.7, 0.005, 0.05}),
                     Catch::StartsWith("no static equilibrium within max_time = 0.05 s: out-of-balance force") &&
-                        Catch::Contains("the outputs show the state at t = 0.05 s"));
+                        Catch::Contains("the outputs show the state at t = 0.05 s") &&
+                        Catch::Contains("; the fastest particles: 'falling' at (") &&
+                        Catch::Contains("(largest speed per body: 'falling' "));
   CHECK(sim.model().time() == Approx(0.05).epsilon(1e-12));
   CHECK_FALSE(sim.running());
   Simulation<2> empty(s);
