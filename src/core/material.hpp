@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string_view>
 
 #include "types.hpp"
@@ -38,6 +39,10 @@ class Material {
   // treats a particle looser than the initial density as opened (a crack): compression closes it
   // without mean stress before loading the material (ModelSettings::crack_closure).
   virtual bool tensionless() const { return false; }
+  // A copy with its shear strength divided by a strength reduction factor srf > 0 (the factor of safety
+  // by strength reduction), density and elasticity unchanged; null for a material without a
+  // frictional strength to reduce (elastic, rigid).
+  virtual std::shared_ptr<const Material> with_reduced_strength(double /*srf*/) const { return nullptr; }
 
  private:
   double density_;

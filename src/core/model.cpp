@@ -36,6 +36,25 @@ int Model<Dim>::add_material(std::shared_ptr<const Material> material) {
 }
 
 template <int Dim>
+void Model<Dim>::replace_material(int index, std::shared_ptr<const Material> material) {
+  if (index < 0 || index >= material_count()) throw InputError("replace_material: unknown material");
+  if (!material) throw InputError("model: null material");
+  if (material->density() != materials_[index]->density())
+    throw InputError("replace_material: the density must stay the same (the particles' masses come from it)");
+  materials_[index] = std::move(material);
+  MaterialConstants constants;  // rebuilt whole: one source of truth for what the step reads
+  for (const auto& m : materials_) constants.add(*m);
+  constants_ = std::move(constants);
+}
+
+template <int Dim>
+Model<Dim> Model<Dim>::copy_without_fixes() const {
+  Model copy(*this);
+  copy.fixes_.clear();
+  return copy;
+}
+
+template <int Dim>
 int Model<Dim>::add_body(const std::string& name, int ppc, bool rigid) {
   if (rigid) {  // at rest until given a velocity
     std::array<std::shared_ptr<const History>, Dim> zero;

@@ -58,9 +58,19 @@ template <int Dim>
 class Model {
  public:
   explicit Model(const ModelSettings<Dim>& settings);
+  Model(Model&&) = default;
+  Model& operator=(Model&&) = default;
+
+  // A copy for a trial run that must leave this model as it is (strength reduction): grid, particles,
+  // materials (shared: they are immutable), bodies, contact and the clock. Fixes are not copied: each
+  // belongs to the run that attached it (a simulation's damping) and the trial attaches its own.
+  Model copy_without_fixes() const;
 
   // --- building ---
   int add_material(std::shared_ptr<const Material> material);
+  // Puts `material` in the place of material `index` for the particles that have it. Its density must
+  // be the same (the particles' masses come from it); its moduli may differ.
+  void replace_material(int index, std::shared_ptr<const Material> material);
   // A deformable body, or a rigid one at rest (density 1000 kg/m^3 for show).
   int add_body(const std::string& name, int ppc, bool rigid = false);
   // A rigid body of prescribed-velocity particles following `velocity` (m/s per axis, histories read
@@ -142,6 +152,8 @@ class Model {
   Vec<Dim> momentum() const;
 
  private:
+  Model(const Model&) = default;  // through copy_without_fixes only
+
   // The step, stage by stage (model.cpp, transfer.cpp, stress_update.cpp).
   StepContext next_step(double dt_max);
   template <class Shape, bool Contact>

@@ -133,6 +133,7 @@ const std::vector<ApiSection>& api_sections() {
       {"Simple methods beside MPM: Newmark's sliding block", methods_functions()},
       {"Plots", plot_functions()},
       {"Limit equilibrium", lem_functions()},
+      {"Strength reduction", strength_reduction_functions()},
       {"Scenario parameters and the session", session_functions()},
       {"Geometry (Lua library, lua/seismpm.lua)", library_functions()},
       {"Console", help_functions()},

@@ -25,6 +25,7 @@ std::span<const Function> plot_functions();
 std::span<const Function> session_functions();  // mpm.param, mpm.version, mpm.out_dir
 std::span<const Function> help_functions();
 std::span<const Function> lem_functions();
+std::span<const Function> strength_reduction_functions();
 std::span<const Function> library_functions();  // lua/seismpm.lua
 
 struct ApiSection {

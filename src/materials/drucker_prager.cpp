@@ -67,6 +67,18 @@ DruckerPrager::DruckerPrager(const DruckerPragerParameters& p)
   c_ = drucker_prager_constants(p_);
 }
 
+std::shared_ptr<const Material> DruckerPrager::with_reduced_strength(double srf) const {
+  DruckerPragerParameters r = p_;
+  static_cast<StrengthParameters&>(r) = reduced_strength(p_, srf);
+  // The fitted cone's apex moves with a reduced dilation angle (plane_strain fit): the reduced tensile
+  // strength stays at most that apex.
+  if (r.friction > 0.0) {
+    const auto c = drucker_prager_constants(r);
+    r.tension = std::min(r.tension, c.k / (3.0 * c.alpha));
+  }
+  return std::make_shared<DruckerPrager>(r);
+}
+
 double DruckerPrager::yield_function(const Sym& s) const {
   const double i1 = trace(s);
   return sqrt_j2(s, i1 / 3.0) + c_.alpha * i1 - c_.k;

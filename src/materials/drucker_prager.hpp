@@ -43,6 +43,7 @@ class DruckerPrager : public Material {
   const DruckerPragerConstants& constants() const { return c_; }
   void update_stress(const StressUpdate& batch) const override;
   bool tensionless() const override { return p_.tension == 0.0; }
+  std::shared_ptr<const Material> with_reduced_strength(double srf) const override;
 
   struct Result {
     Sym stress;

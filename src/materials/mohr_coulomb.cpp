@@ -85,6 +85,19 @@ constexpr Candidate kCandidates[8] = {
     {3, {0, 2, 3}, MohrCoulomb::Return::Mixed},
 };
 
+std::shared_ptr<const Material> MohrCoulomb::with_reduced_strength(double srf) const {
+  MohrCoulombParameters r = p_;
+  static_cast<StrengthParameters&>(r) = reduced_strength(p_, srf);
+  // The residual strength is reduced alike, so softening goes from the reduced peak to the reduced
+  // residual (both divided by the same factor keep their order).
+  r.residual_cohesion = p_.residual_cohesion / srf;
+  r.residual_friction = reduced_friction(p_.residual_friction, srf);
+  // tension / srf <= (c / srf) / tan(phi_r) = c cot(phi): the apex does not move; the clamp only
+  // absorbs round-off.
+  if (r.friction > 0.0) r.tension = std::min(r.tension, r.cohesion / std::tan(r.friction * kDeg));
+  return std::make_shared<MohrCoulomb>(r);
+}
+
 MohrCoulomb::MohrCoulomb(const MohrCoulombParameters& p) : Material(p.density), p_(p), elastic_{p.young, p.poisson} {
   validate(p_);
   fixed_ = tables(0.0);

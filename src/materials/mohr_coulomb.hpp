@@ -36,6 +36,7 @@ class MohrCoulomb : public Material {
   const MohrCoulombParameters& parameters() const { return p_; }
   void update_stress(const StressUpdate& batch) const override;
   bool tensionless() const override { return p_.tension == 0.0; }
+  std::shared_ptr<const Material> with_reduced_strength(double srf) const override;
 
   // Which return the last integrate() made.
   enum class Return { Elastic, Face, CompressionEdge, ExtensionEdge, Apex, Tension, TensionEdge, TensionApex, Mixed };

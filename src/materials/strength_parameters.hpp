@@ -22,4 +22,11 @@ inline constexpr Interval kTensionRange = at_least(0.0);            // Pa; each 
 // dilation in [0, friction], tension >= 0, and not both cohesion and friction zero (no strength).
 void validate_strength(const StrengthParameters& s);
 
+// The strength divided by a strength reduction factor srf > 0: c / srf, tan(phi) / srf, tension / srf
+// (so the apex c cot(phi) stays where it is), and the dilation angle kept unless it would exceed the
+// reduced friction angle, then equal to it (more dilation than friction would create energy).
+StrengthParameters reduced_strength(const StrengthParameters& s, double srf);
+// A friction angle (degrees) with tan(phi) / srf.
+double reduced_friction(double friction, double srf);
+
 }  // namespace seismpm

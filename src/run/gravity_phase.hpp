@@ -30,12 +30,16 @@ template <int Dim>
 class EquilibriumMonitor {
  public:
   explicit EquilibriumMonitor(double tolerance) : tolerance_(tolerance) {}
+  // Measures the kinetic energy against at least `peak`, an earlier phase's peak: a phase that starts
+  // near equilibrium (a strength reduction trial) has a tiny peak of its own, below round-off motion.
+  EquilibriumMonitor(double tolerance, double peak) : tolerance_(tolerance), peak_energy_(peak) {}
   // After each step of the phase (the model must measure its balance: Model::set_balance_measure).
   void update(const Model<Dim>& model);
   bool reached() const { return steps_ >= kMinSteps && force_ratio_ < tolerance_ && energy_ratio_ < tolerance_; }
   double force_ratio() const { return force_ratio_; }
   double energy_ratio() const { return energy_ratio_; }
   double tolerance() const { return tolerance_; }
+  double peak_energy() const { return peak_energy_; }
 
  private:
   static constexpr int kMinSteps = 10;  // the first steps of a body at rest prove nothing
