@@ -1,8 +1,9 @@
 -- The engineer's simple methods beside MPM, on the paper's two slopes (issue 18, item 5): for the
 -- shaking-table slope (scenarios/shaking_table.lua) and the Chiu-fen-erh-shan slope
 -- (scenarios/chichi_landslide.lua), each run as it is, with its parameters overridden:
---   * limit equilibrium (mpm.lem, Bishop's circles, or Spencer on a given surface): the static factor
---     of safety (kh = 0) and the yield acceleration ky (g), on the model as built, before any phase;
+--   * limit equilibrium (mpm.lem: Bishop's circle search on the shaking table, Spencer on the bedding
+--     plane of the field slope): the static factor of safety (kh = 0) and the yield acceleration ky (g),
+--     on the model as built, before any phase;
 --   * Newmark's rigid sliding block (mpm.newmark) with that ky on the acceleration of the horizontal
 --     base motion the MPM model gets (the table's velocity, the valley floor's record), differentiated
 --     between its samples; both slopes descend towards +x, so a base acceleration towards -x drives the
@@ -21,7 +22,7 @@
 -- (--set field_record=synthetic asks for that).
 --
 -- --set reuse=true takes an MPM result this scenario wrote before (<out>/<slope>/three_methods_mpm.csv,
--- same cell size, duration and record) instead of running MPM again: the models are still built, for
+-- same cell size, duration, record and probe) instead of running MPM again: the models are still built, for
 -- limit equilibrium and the base motion, but no phase runs.
 --
 --   seismpm scenarios/three_methods.lua [--set cell=0.0125,10] [--set slopes=shaking_table,chichi_landslide]
@@ -241,8 +242,8 @@ end
 local function run_slope(s)
   local seen = run_scenario(s)
   local lem, reused = seen.lem, seen.reused
-  print(string.format("%s: static FoS %.4f, ky %.4f g (limit equilibrium %.1f s)", s.key, lem.fos, lem.ky,
-                      seen.lem_time))
+  print(string.format("%s: static FoS %.4f, ky %.4f g (limit equilibrium %.1f s); MPM probe at (%.4g, %.4g) m",
+                      s.key, lem.fos, lem.ky, seen.lem_time, s.probe_at[1], s.probe_at[2]))
   assert(lem.ky > 0, s.key .. ": the slope fails statically (ky = 0): Newmark's method does not apply")
   local mpm_run = reused or mpm_result(s, seen)
   if reused then
