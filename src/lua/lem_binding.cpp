@@ -34,7 +34,7 @@ const Key kLemKeys[] = {
                 "the method of slices: bishop (moment equilibrium, circles) or spencer (force and moment "
                 "equilibrium, circles or a given surface)"),
     arg::number("kh", "g", "pseudo-static horizontal seismic coefficient, out of the slope").def(0).in(at_least(0)),
-    arg::integer("slices", "slices between the circle's entry and exit").def(80).in(closed(4, 10000)),
+    arg::integer("slices", "slices between the slip surface's entry and exit").def(80).in(closed(4, 10000)),
     arg::table("search", kSearchKeys, "narrows the circle search"),
     arg::custom("surface", "{{x, y}, ...}", "m",
                 "a slip surface of your own (spencer only): x increasing, from above the ground to above it "
