@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/error.hpp"
+#include "methods/spencer.hpp"
 
 namespace seismpm {
 
@@ -132,29 +133,39 @@ std::optional<std::pair<double, double>> sliding_span(const LemSlope& s, const L
   return best;
 }
 
-struct Slice {
-  double weight, centroid, sin_a, cos_a, width, cohesion, tan_phi;
-};
+// One slice by its mid-line x: the height there times the width (the midpoint rule); c and phi of the
+// band at the base's middle.
+LemSlice slice_at(const std::vector<LemBand>& bands, const LemSlope& s, double xm, double yb, double width,
+                  double sin_a, double cos_a) {
+  const Column col = column(bands, yb, std::max(ground(s, xm), yb));
+  const LemSoil& soil = soil_at(bands, yb);
+  return {col.weight * width,
+          col.centroid,
+          xm,
+          yb,
+          width,
+          sin_a,
+          cos_a,
+          soil.cohesion,
+          std::tan(soil.friction * std::numbers::pi / 180)};
+}
 
-std::vector<Slice> slices_of(const LemSlope& s, const LemCircle& c, std::pair<double, double> span, int n) {
+std::vector<LemSlice> slices_of(const LemSlope& s, const LemCircle& c, std::pair<double, double> span, int n) {
   const auto bands = sorted_bands(s);
   const double b = (span.second - span.first) / n;
-  std::vector<Slice> out;
+  std::vector<LemSlice> out;
   out.reserve(n);
   for (int i = 0; i < n; ++i) {
-    // Each slice by its mid-line: the height there times the width (the midpoint rule).
     const double xm = span.first + (i + 0.5) * b, yb = arc(c, xm);
-    const Column col = column(bands, yb, std::max(ground(s, xm), yb));
-    const LemSoil& soil = soil_at(bands, yb);
-    out.push_back({col.weight * b, col.centroid, (c.xc - xm) / c.r, (c.yc - yb) / c.r, b, soil.cohesion,
-                   std::tan(soil.friction * std::numbers::pi / 180)});
+    out.push_back(slice_at(bands, s, xm, yb, b, (c.xc - xm) / c.r, (c.yc - yb) / c.r));
   }
   return out;
 }
 
 // Bishop's simplified method: moment equilibrium about the centre, vertical equilibrium of each slice,
 // interslice shear neglected. F appears on both sides (in m_alpha): fixed-point iteration from F = 1.
-std::optional<double> bishop(const std::vector<Slice>& slices, const LemCircle& c, double kh, const LemSettings& st) {
+std::optional<double> bishop(const std::vector<LemSlice>& slices, const LemCircle& c, double kh,
+                             const LemSettings& st) {
   double drive = 0;
   for (const auto& sl : slices) drive += sl.weight * (sl.sin_a + kh * (c.yc - sl.centroid) / c.r);
   if (!(drive > 0)) return std::nullopt;
@@ -172,11 +183,19 @@ std::optional<double> bishop(const std::vector<Slice>& slices, const LemCircle& 
   return f;
 }
 
+std::optional<double> of_method(const std::vector<LemSlice>& slices, const LemCircle& c, double kh,
+                                const LemSettings& st) {
+  if (st.method == LemMethod::bishop) return bishop(slices, c, kh, st);
+  const auto r = spencer(slices, kh, st);
+  if (!r) return std::nullopt;
+  return r->fos;
+}
+
 std::optional<double> fos_right(const LemSlope& s, const LemCircle& c, double kh, const LemSettings& st) {
   if (!(c.r > 0)) return std::nullopt;
   const auto span = sliding_span(s, c);
   if (!span) return std::nullopt;
-  return bishop(slices_of(s, c, *span, st.slices), c, kh, st);
+  return of_method(slices_of(s, c, *span, st.slices), c, kh, st);
 }
 
 double fos_or_inf(const LemSlope& s, const LemCircle& c, double kh, const LemSettings& st) {
@@ -291,6 +310,76 @@ LemSearch mirrored(const LemSearch& se) {
   return m;
 }
 
+// ky: the kh at which fos_at(kh) = 1, bracketed by doubling from 0.1 and bisected; 0 when the slope
+// fails without shaking.
+template <class FosAt>
+double yield_coefficient(double static_fos, FosAt fos_at, const LemSettings& st) {
+  if (static_fos < 1) return 0;
+  double lo = 0, hi = 0.1;
+  while (fos_at(hi) >= 1 && hi < 10) lo = hi, hi *= 2;
+  while (hi - lo > st.ky_tolerance) {
+    const double mid = 0.5 * (lo + hi);
+    (fos_at(mid) >= 1 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The elevation of a polyline at x (x inside its range).
+double along(const std::vector<LemPoint>& p, double x) {
+  LemSlope line;
+  line.surface = p;
+  return ground(line, x);
+}
+
+// The sliding mass over a given surface: the widest span where the ground lies above it. Ground and
+// surface are both piecewise linear, so between the union of their vertices their difference is linear
+// and its zeros are found exactly.
+std::pair<double, double> surface_span(const LemSlope& s, const std::vector<LemPoint>& path) {
+  if (path.size() < 2) throw InputError("limit equilibrium: the slip surface needs two points or more");
+  for (std::size_t i = 1; i < path.size(); ++i)
+    if (!(path[i].x > path[i - 1].x))
+      throw InputError("limit equilibrium: the slip surface's x must increase strictly");
+  std::vector<double> xs;
+  for (const auto& p : path) xs.push_back(p.x);
+  for (const auto& p : s.surface)
+    if (p.x > path.front().x && p.x < path.back().x) xs.push_back(p.x);
+  std::sort(xs.begin(), xs.end());
+  auto depth = [&](double x) { return ground(s, x) - along(path, x); };
+  const double tol = 1e-9 * (path.back().x - path.front().x);
+  if (depth(xs.front()) > tol || depth(xs.back()) > tol)
+    throw InputError("limit equilibrium: the slip surface must start and end at or above the ground");
+  std::optional<std::pair<double, double>> best;
+  double entry = 0;
+  for (std::size_t i = 1; i < xs.size(); ++i) {
+    const double d0 = depth(xs[i - 1]), d1 = depth(xs[i]);
+    const double cross = xs[i - 1] + (xs[i] - xs[i - 1]) * d0 / (d0 - d1);
+    if (d0 <= 0 && d1 > 0) entry = d0 == 0 ? xs[i - 1] : cross;
+    if (d0 > 0 && d1 <= 0 && (!best || cross - entry > best->second - best->first)) best = {{entry, cross}};
+  }
+  if (!best || !(best->second - best->first > tol))
+    throw InputError("limit equilibrium: the slip surface does not pass under the ground");
+  return *best;
+}
+
+// Slices of equal width over a given surface; each base's inclination is that of the surface's segment
+// under the slice's middle.
+std::vector<LemSlice> slices_under(const LemSlope& s, const std::vector<LemPoint>& path, std::pair<double, double> span,
+                                   int n) {
+  const auto bands = sorted_bands(s);
+  const double b = (span.second - span.first) / n;
+  std::vector<LemSlice> out;
+  out.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const double xm = span.first + (i + 0.5) * b;
+    auto it = std::upper_bound(path.begin(), path.end(), xm, [](double v, const LemPoint& q) { return v < q.x; });
+    const LemPoint& p1 = *std::min(it, path.end() - 1);
+    const LemPoint& p0 = *(std::min(it, path.end() - 1) - 1);
+    const double len = std::hypot(p1.x - p0.x, p1.y - p0.y);
+    out.push_back(slice_at(bands, s, xm, along(path, xm), b, (p0.y - p1.y) / len, (p1.x - p0.x) / len));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<LemPoint> slip_surface(const LemSlope& slope, const LemCircle& c, int slices) {
@@ -307,9 +396,15 @@ std::vector<LemPoint> slip_surface(const LemSlope& slope, const LemCircle& c, in
   return out;
 }
 
-std::optional<double> bishop_fos(const LemSlope& slope, const LemCircle& c, double kh, const LemSettings& st) {
+std::optional<double> circle_fos(const LemSlope& slope, const LemCircle& c, double kh, const LemSettings& st) {
   const auto [s, flipped] = oriented(slope);
   return fos_right(s, {flipped ? -c.xc : c.xc, c.yc, c.r}, kh, st);
+}
+
+std::optional<double> bishop_fos(const LemSlope& slope, const LemCircle& c, double kh, const LemSettings& st) {
+  LemSettings bishop = st;
+  bishop.method = LemMethod::bishop;
+  return circle_fos(slope, c, kh, bishop);
 }
 
 LemResult critical_circle(const LemSlope& slope, double kh, const LemSearch& search, const LemSettings& st) {
@@ -319,22 +414,49 @@ LemResult critical_circle(const LemSlope& slope, double kh, const LemSearch& sea
   r.fos = t.fos;
   r.circle = {flipped ? -t.circle.xc : t.circle.xc, t.circle.yc, t.circle.r};
   r.surface = slip_surface(slope, r.circle, st.slices);
+  if (st.method == LemMethod::spencer) {
+    const auto span = sliding_span(s, t.circle);
+    const auto sol = span ? spencer(slices_of(s, t.circle, *span, st.slices), kh, st) : std::nullopt;
+    if (sol) r.theta = -sol->theta * 180 / std::numbers::pi;
+  }
   return r;
 }
 
 LemResult limit_equilibrium(const LemSlope& slope, double kh, const LemSearch& search, const LemSettings& st) {
   LemResult r = critical_circle(slope, kh, search, st);
   const double static_fos = kh == 0 ? r.fos : critical_circle(slope, 0, search, st).fos;
-  if (static_fos < 1) return r;  // ky = 0: the slope fails without shaking
-  // Bracket ky by doubling, then bisect; each trial kh searches the circles anew, since the critical
-  // circle moves with kh.
-  double lo = 0, hi = 0.1;
-  while (critical_circle(slope, hi, search, st).fos >= 1 && hi < 10) lo = hi, hi *= 2;
-  while (hi - lo > st.ky_tolerance) {
-    const double mid = 0.5 * (lo + hi);
-    (critical_circle(slope, mid, search, st).fos >= 1 ? lo : hi) = mid;
+  // Each trial kh searches the circles anew, since the critical circle moves with kh.
+  r.ky = yield_coefficient(
+      static_fos, [&](double k) { return critical_circle(slope, k, search, st).fos; }, st);
+  return r;
+}
+
+LemResult surface_equilibrium(const LemSlope& slope, const std::vector<LemPoint>& surface, double kh,
+                              const LemSettings& st) {
+  const auto [s, flipped] = oriented(slope);
+  std::vector<LemPoint> path = surface;
+  if (flipped) {
+    std::reverse(path.begin(), path.end());
+    for (auto& p : path) p.x = -p.x;
   }
-  r.ky = 0.5 * (lo + hi);
+  const auto span = surface_span(s, path);
+  auto solve = [&](double k) {
+    const auto sol = spencer(slices_under(s, path, span, st.slices), k, st);
+    if (!sol) throw InputError("limit equilibrium: Spencer's method finds no solution on the given surface");
+    return *sol;
+  };
+  const SpencerSolution at_kh = solve(kh);
+  LemResult r;
+  r.fos = at_kh.fos;
+  r.theta = -at_kh.theta * 180 / std::numbers::pi;
+  const double static_fos = kh == 0 ? r.fos : solve(0).fos;
+  r.ky = yield_coefficient(
+      static_fos, [&](double k) { return solve(k).fos; }, st);
+  for (int i = 0; i <= st.slices; ++i) {
+    const double x = span.first + (span.second - span.first) * i / st.slices;
+    r.surface.push_back({flipped ? -x : x, along(path, x)});
+  }
+  if (flipped) std::reverse(r.surface.begin(), r.surface.end());
   return r;
 }
 

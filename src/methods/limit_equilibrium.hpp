@@ -1,6 +1,7 @@
-// Limit equilibrium of a 2D slope: Bishop's simplified method of slices on circular slip surfaces, a
-// search for the critical circle, and the pseudo-static yield coefficient ky. No Lua, no model: the slope
-// is a ground-surface polyline over soil in horizontal bands, above a firm base no circle may enter.
+// Limit equilibrium of a 2D slope: Bishop's simplified method or Spencer's method of slices on circular
+// slip surfaces, a search for the critical circle, Spencer's method on a given (non-circular) slip
+// surface, and the pseudo-static yield coefficient ky. No Lua, no model: the slope is a ground-surface
+// polyline over soil in horizontal bands, above a firm base no circle may enter.
 #pragma once
 
 #include <optional>
@@ -43,7 +44,10 @@ struct LemSearch {
   int radii = 16;                                      // radii sampled per centre before refining
 };
 
+enum class LemMethod { bishop, spencer };
+
 struct LemSettings {
+  LemMethod method = LemMethod::bishop;
   int slices = 80;
   double tolerance = 1e-6;  // on the factor of safety between Bishop iterations
   int max_iterations = 200;
@@ -55,6 +59,9 @@ struct LemResult {
   LemCircle circle;
   std::vector<LemPoint> surface;  // the slip surface, entry to exit
   double ky = 0;                  // kh at which the minimum FoS is 1 (0 when the static FoS is below 1)
+  // Spencer: the interslice forces' inclination (degrees), positive where an upslope slice pushes its
+  // downslope neighbour down towards the toe (the usual case); Bishop: 0.
+  double theta = 0;
 };
 
 // Bishop's factor of safety of one circle under a horizontal seismic coefficient kh; nullopt when the
@@ -67,6 +74,16 @@ LemResult critical_circle(const LemSlope& slope, double kh, const LemSearch& sea
 
 // critical_circle at kh, plus ky by bisection on kh (each trial a new search).
 LemResult limit_equilibrium(const LemSlope& slope, double kh, const LemSearch& search = {}, const LemSettings& s = {});
+
+// The factor of safety (settings' method) of one circle under kh; nullopt as for bishop_fos.
+std::optional<double> circle_fos(const LemSlope& slope, const LemCircle& c, double kh, const LemSettings& s = {});
+
+// Spencer's method on a given slip surface (a polyline, x strictly increasing, that starts and ends at
+// or above the ground): the mass is the widest span where the ground lies above it. fos, theta and ky
+// (bisection on kh for this surface); surface: the part under the mass. Throws InputError for a
+// surface that does not cut the slope or ends underground.
+LemResult surface_equilibrium(const LemSlope& slope, const std::vector<LemPoint>& surface, double kh,
+                              const LemSettings& s = {});
 
 // The slip surface of a circle through the slope (entry to exit, slices + 1 points); empty if none.
 std::vector<LemPoint> slip_surface(const LemSlope& slope, const LemCircle& c, int slices);

@@ -1,5 +1,7 @@
 // mpm.lem on a model's slope: the same factor as the core solver on the same geometry, and its errors.
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <vector>
 
 #include "lua_fixture.hpp"
 #include "methods/limit_equilibrium.hpp"
@@ -51,11 +53,55 @@ TEST_CASE("mpm.lem on a model's slope matches the core solver on the same geomet
   CHECK(global("fos_kh") < global("fos") - 0.1);
 }
 
+TEST_CASE("mpm.lem with Spencer's method matches the core solver, on circles and on a given surface",
+          "[lua][lem][spencer]") {
+  using namespace seismpm;
+  const LemSlope slope{{{-20, 12}, {0, 12}, {20, 2}, {45, 2}}, {{0, {20e3, 10e3, 20}}}, 0};
+  LemSettings spencer;
+  spencer.method = LemMethod::spencer;
+  // A non-circular surface from behind the crest to the toe (20, 2), beyond which it rises out of the
+  // ground again (the particles' surface there is a staircase).
+  const std::vector<LemPoint> plane{{-14, 14}, {-6, 6}, {8, 2}, {20, 2}, {25, 3}};
+  const LemResult core_plane = surface_equilibrium(slope, plane, 0, spencer);
+  const LemResult core_circle = critical_circle(slope, 0, {}, spencer);
+  LuaFixture f;
+  const std::string error = f.error_of(std::string(kSlope) + R"(
+    local c = mpm.lem{ model = m, method = "spencer", search = { levels = 3 } }
+    circle_fos, theta = c.fos, c.theta
+    local p = mpm.lem{ model = m, method = "spencer", surface = {{-14, 14}, {-6, 6}, {8, 2}, {20, 2}, {25, 3}} }
+    plane_fos, plane_ky, no_circle, points = p.fos, p.ky, p.circle == nil, #p.surface
+  )");
+  REQUIRE(error == "");
+  lua_State* L = f.runtime.state();
+  auto global = [L](const char* name) {
+    lua_getglobal(L, name);
+    const double v = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    return v;
+  };
+  CHECK(global("circle_fos") == Approx(core_circle.fos).epsilon(0.02));
+  CHECK(global("theta") == Approx(core_circle.theta).margin(5));
+  CHECK(global("plane_fos") == Approx(core_plane.fos).epsilon(0.02));
+  CHECK(global("plane_ky") == Approx(core_plane.ky).epsilon(0.05));
+  CHECK(global("points") == 81);
+  lua_getglobal(L, "no_circle");
+  CHECK(lua_toboolean(L, -1));
+  lua_pop(L, 1);
+}
+
 TEST_CASE("mpm.lem: errors name the key or the material", "[lua][lem][errors]") {
   LuaFixture f;
   CHECK_THAT(f.error_of(std::string(kSlope) + "mpm.lem{ model = m, kh = -1 }"), Catch::Contains("kh"));
-  CHECK_THAT(f.error_of(std::string(kSlope) + "mpm.lem{ model = m, method = 'spencer' }"),
-             Catch::Contains("spencer is not available"));
+  CHECK_THAT(f.error_of(std::string(kSlope) + "mpm.lem{ model = m, surface = {{-15, 14}, {20, 2}} }"),
+             Catch::Contains("needs method = \"spencer\""));
+  CHECK_THAT(f.error_of(std::string(kSlope) +
+                        "mpm.lem{ model = m, method = 'spencer', surface = {{-15, 14}, {20, 2}}, search = {} }"),
+             Catch::Contains("key 'search'"));
+  CHECK_THAT(
+      f.error_of(std::string(kSlope) + "mpm.lem{ model = m, method = 'spencer', surface = {{-15, 14}, {10, 4}} }"),
+      Catch::Contains("start and end at or above the ground"));
+  CHECK_THAT(f.error_of(std::string(kSlope) + "mpm.lem{ model = m, method = 'spencer', surface = {{-15, 14}, 3} }"),
+             Catch::Contains("surface[2]"));
   CHECK_THAT(f.error_of(std::string(kSlope) + "mpm.lem{ model = m, search = { radii = {5} } }"),
              Catch::Contains("radii"));
   CHECK_THAT(f.error_of(std::string(kSlope) + "mpm.lem{ model = m, serch = {} }"), Catch::Contains("serch"));
