@@ -143,7 +143,7 @@ const Function kStrengthReduction[] = {
      "deformable particle moving farther than max_displacement; otherwise it fails (the slope keeps moving or "
      "slides). Bisection between lo (must hold) and hi (must fail) until the bracket is no wider than tolerance. "
      "Returns { fos, holds, fails, max_displacement, criterion, trials = { {srf, converged, ended, displacement, "
-     "kinetic_energy, time, steps, unbalanced, kinetic}, ... }, file }. See docs/strength-reduction.md.",
+     "kinetic_energy, time, steps, unbalanced, kinetic}, ... }, file }. See docs/methods.md.",
      "local r = m:strength_reduction{ srf = {1, 2}, tolerance = 0.01, write = true }  print(r.fos, #r.trials)"},
 };
 
