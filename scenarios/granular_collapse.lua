@@ -1,0 +1,140 @@
+-- Granular column collapse: the aluminium-bar experiment of Bui, Fukagawa, Sako & Ohno (2008).
+--
+-- A column of aluminium bars 0.2 m wide and 0.1 m high (aspect ratio 0.5) stands against a fixed wall
+-- on the left, held by a gate on the right. The gate is lifted and the column collapses into a deposit.
+-- The bars behave as a cohesionless Mohr-Coulomb material: rho = 2650 kg/m3, E = 0.84 MPa, nu = 0.3,
+-- phi = 19.8 deg, c = 0, psi = 0. The experiment's deposit: run-out (where it is 1 mm thick) 0.44-0.46 m,
+-- surface 0.078 m above x = 0.10 m and 0.049 m above x = 0.20 m.
+--
+-- The model: the wall is the grid's left edge (held in x), the floor its bottom (held in x and y: the
+-- bars do not slide on it). A gravity phase brings the column to rest against a smooth rigid gate; in
+-- the dynamic phase the gate rises at 1 m/s (clear of the column's top in 0.1 s) and the run goes on
+-- until the deposit is at rest (fastest particle below 1 mm/s) or `duration` has passed.
+--
+-- Outputs (out/granular_collapse/): particles.pvd for ParaView, deposit.csv and deposit.png (the
+-- computed surface beside the measured one, where ../shared/data/bui2008_deposit.csv is present),
+-- front.csv (the front against time), summary.txt.
+--
+--   seismpm scenarios/granular_collapse.lua [--set shape=linear|gimp] [--set cell=0.004] [--set ppc=2]
+--                                           [--set duration=1.5] [--set check=true]
+--
+-- check=true asserts the experiment's bands: the deposit surface within 5 mm of the measured one for
+-- x <= 0.30 m, the run-out within 0.42-0.52 m, and the deposit at rest.
+
+local shape = mpm.param("shape", "linear")      -- linear | gimp
+local cell = mpm.param("cell", 0.004)           -- m
+local ppc = mpm.param("ppc", 2)                 -- particles per cell along each axis
+local duration = mpm.param("duration", 1.5)     -- s of dynamic phase at most
+local check = mpm.param("check", false)
+if shape ~= "linear" and shape ~= "gimp" then error("--set shape must be linear or gimp, got '" .. shape .. "'", 0) end
+
+local width, height = 0.2, 0.1                  -- m, the column
+local length, top = 0.7, 0.35                   -- m, the domain (the gate rises to 0.32 m)
+local rho, young, poisson, phi = 2650, 0.84e6, 0.3, 19.8
+local lift_speed, lift_time = 1.0, 0.2          -- m/s, s
+local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
+
+local m = mpm.model{ domain = {{0, 0}, {length, top}}, cell = cell, shape = shape }
+local bars = mpm.material.mohr_coulomb{ density = rho, young = young, poisson = poisson, cohesion = 0,
+                                        friction = phi, dilation = 0 }
+local column = m:body{ name = "column", material = bars, shape = mpm.shape.rectangle{ 0, 0, width, height },
+                       ppc = ppc }
+m:fix{ side = "left", dof = "x" }
+m:fix{ side = "bottom", dof = "xy" }
+local lift = mpm.history.table{ {0, lift_speed}, {lift_time, lift_speed}, {lift_time + 1e-4, 0} }
+local gate = m:rigid{ name = "gate", shape = mpm.shape.rectangle{ width, 0, width + 2 * cell, 1.2 * height },
+                      ppc = ppc, velocity = {0, lift} }
+m:contact{ column, gate, friction = 0 }
+print(string.format("granular collapse: %d particles (%s shape functions, %g mm cells, %dx%d per cell)",
+                    column:count(), shape, 1000 * cell, ppc, ppc))
+
+local out = mpm.out_dir("out/granular_collapse")
+m:output{ dir = out, every = 0.05 }
+m:gravity_phase{ damping = 0.7, tolerance = 0.005, max_time = 3 }
+
+-- The front: the 99.5th percentile of the particles' x (a few stray particles do not count).
+local function front_and_speed()
+  local x, vx, vy = column:field("x"), column:field("vx"), column:field("vy")
+  local xs, fastest = {}, 0
+  for i = 1, #x do
+    xs[i] = x[i]
+    fastest = math.max(fastest, math.sqrt(vx[i] ^ 2 + vy[i] ^ 2))
+  end
+  table.sort(xs)
+  return xs[math.max(1, math.floor(0.995 * #xs))], fastest
+end
+
+local front_rows = { "time (s),front (m),fastest particle (m/s)" }
+local at_rest = false
+m:dynamic_phase{ duration = duration, every = 0.05, call = function()
+  local front, fastest = front_and_speed()
+  front_rows[#front_rows + 1] = string.format("%.4f,%.6f,%.6g", m:phase_time(), front, fastest)
+  at_rest = m:phase_time() > lift_time and fastest < 1e-3
+  return at_rest
+end }
+local front, fastest = front_and_speed()
+local file = assert(io.open(out .. "/front.csv", "w"))
+file:write(table.concat(front_rows, "\n"), "\n")
+file:close()
+
+-- The deposit surface at x: the top of the highest particle less than a particle spacing from x.
+local spacing = cell / ppc
+local px, py = column:field("x"), column:field("y")
+local function surface(x)
+  local s = 0
+  for i = 1, #px do
+    if math.abs(px[i] - x) < spacing then s = math.max(s, py[i] + 0.5 * spacing) end
+  end
+  return s
+end
+
+-- The measured profile, where the shared data holds it.
+local measured = {}
+local data = io.open(here .. "../../shared/data/bui2008_deposit.csv")
+if data then
+  for line in data:lines() do
+    local x, y = line:match("^([%d.]+),([%d.]+)")
+    if x then measured[#measured + 1] = { tonumber(x), tonumber(y) } end
+  end
+  data:close()
+end
+
+local rows = { "x (m),computed surface (m),measured surface (m)" }
+local worst = 0
+local measured_at = {}
+for _, p in ipairs(measured) do measured_at[string.format("%.3f", p[1])] = p[2] end
+for k = 0, math.floor(0.6 / 0.01) do
+  local x = k * 0.01
+  local e = measured_at[string.format("%.3f", x)]
+  local s = surface(x)
+  rows[#rows + 1] = string.format("%.3f,%.5f,%s", x, s, e and string.format("%.4f", e) or "")
+  if e and x <= 0.30 + 1e-9 then worst = math.max(worst, math.abs(s - e)) end
+end
+file = assert(io.open(out .. "/deposit.csv", "w"))
+file:write(table.concat(rows, "\n"), "\n")
+file:close()
+mpm.plot{ file = out .. "/deposit.csv", x = "x (m)", y = #measured > 0 and {"computed surface (m)", "measured surface (m)"}
+            or {"computed surface (m)"}, title = "Deposit of the collapsed column", xlabel = "x (m)",
+          ylabel = "surface height (m)" }
+
+local lines = {
+  string.format("granular collapse (%s, %g mm cells, %dx%d particles per cell): %d steps, t = %.3f s",
+                shape, 1000 * cell, ppc, ppc, m:steps(), m:phase_time()),
+  string.format("run-out (99.5th percentile of x): %.4f m (experiment 0.44-0.46 m)", front),
+  string.format("surface above x = 0.10 m: %.4f m (experiment 0.078), above x = 0.20 m: %.4f m (experiment 0.049)",
+                surface(0.10), surface(0.20)),
+  #measured > 0 and string.format("largest surface difference for x <= 0.30 m: %.1f mm", 1000 * worst)
+    or "the measured profile (../shared/data/bui2008_deposit.csv) is absent: no comparison",
+  string.format("fastest particle at the end: %.3g m/s (%s)", fastest, at_rest and "at rest" or "still moving"),
+}
+file = assert(io.open(out .. "/summary.txt", "w"))
+file:write(table.concat(lines, "\n"), "\n")
+file:close()
+for _, l in ipairs(lines) do print(l) end
+
+if check then
+  assert(front >= 0.42 and front <= 0.52, string.format("run-out %.3f m outside 0.42-0.52 m", front))
+  assert(#measured == 0 or worst <= 0.005, string.format("surface %.1f mm off the experiment", 1000 * worst))
+  assert(at_rest, string.format("the deposit is still moving (%.3g m/s)", fastest))
+  print("check passed")
+end
