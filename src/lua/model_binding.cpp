@@ -32,6 +32,11 @@ const Key kModelKeys[] = {
                 "breaks up, stress-free particles would otherwise swell without bound and shrink the time step")
         .in(zero_or_at_least(1))
         .def(kKernel.max_dilation),
+    arg::boolean("cell_volumetric_strain", kKernel.cell_volumetric_strain,
+                 "average the volumetric strain increment over each cell (B-bar style, against volumetric locking)"),
+    arg::boolean("crack_closure", kKernel.crack_closure,
+                 "a tensionless particle looser than its initial density closes that opening first when compressed, "
+                 "without raising its mean stress"),
 };
 
 // The domain {{x0, y0}, {x1, y1}} of mpm.model's arguments, read raw.
@@ -68,6 +73,8 @@ int model_new(lua_State* L) {
   s.flip = a.number("flip");
   if (auto dt = a.optional_number("dt")) s.fixed_dt = *dt;
   s.max_dilation = a.number("max_dilation");
+  s.cell_volumetric_strain = a.boolean("cell_volumetric_strain");
+  s.crack_closure = a.boolean("crack_closure");
   auto handle = std::make_shared<ModelHandle>(s);
   push_object(L, ModelObject{std::move(handle)});
   return 1;
