@@ -26,22 +26,42 @@ function geometry.slope(t)
   return mpm.shape.polygon{ {left, base}, {right, base}, {right, toe}, {toe_x, toe}, {cx, cy}, {left, cy} }
 end
 
--- Horizontal layers listed from the bottom up by their top elevation.
+-- Horizontal layers listed from the bottom up, each by its top elevation or its thickness: a list of
+-- { name, shape = rectangle, material } that m:body takes as its regions (one body, no interfaces).
+local layer_keys = { top = true, thickness = true, name = true, material = true }
+
 function geometry.layers(t)
   local f = "mpm.geometry.layers"
   local a = check_args(f, t)
   local left, right, bottom = a.left, a.right, a.base
-  if #t == 0 then error(f .. ": give at least one layer {top = y, name = ...}", 2) end
+  if not (right > left) then error(f .. ": key 'right' must exceed 'left'", 2) end
+  if #t == 0 then error(f .. ": give at least one layer {top = y, name = ..., material = ...}", 2) end
   local out = {}
   for i, layer in ipairs(t) do
-    if type(layer) ~= "table" or type(layer.top) ~= "number" then
-      error(f .. ": layer " .. i .. " must be {top = y (m), name = ...}", 2)
+    if type(layer) ~= "table" then error(f .. ": layer " .. i .. " must be a table {top = y (m), ...}", 2) end
+    for k in pairs(layer) do
+      if not layer_keys[k] then
+        error(f .. ": layer " .. i .. ": unknown key '" .. tostring(k) .. "' (allowed: top thickness name material)", 2)
+      end
     end
-    if not (layer.top > bottom) then
-      error(f .. ": layer " .. i .. " top " .. layer.top .. " must be above " .. bottom, 2)
+    local top = layer.top
+    if layer.thickness ~= nil then
+      if top ~= nil then error(f .. ": layer " .. i .. ": give top or thickness, not both", 2) end
+      if type(layer.thickness) ~= "number" or not (layer.thickness > 0) then
+        error(f .. ": layer " .. i .. ": thickness must be a number > 0 (m)", 2)
+      end
+      top = bottom + layer.thickness
     end
-    out[i] = { name = layer.name or ("layer" .. i), shape = mpm.shape.rectangle{ left, bottom, right, layer.top } }
-    bottom = layer.top
+    if type(top) ~= "number" then error(f .. ": layer " .. i .. " must be {top = y (m) or thickness = t (m), ...}", 2) end
+    if not (top > bottom) then
+      error(f .. ": layer " .. i .. " top " .. top .. " must be above " .. bottom, 2)
+    end
+    if layer.name ~= nil and type(layer.name) ~= "string" then
+      error(f .. ": layer " .. i .. ": name must be a string", 2)
+    end
+    out[i] = { name = layer.name or ("layer" .. i), shape = mpm.shape.rectangle{ left, bottom, right, top },
+               material = layer.material }
+    bottom = top
   end
   return out
 end

@@ -26,10 +26,11 @@ Model<Dim>::Model(const ModelSettings<Dim>& settings)
 // ---------------------------------------------------------------- building
 
 template <int Dim>
-int Model<Dim>::add_material(std::shared_ptr<const Material> material) {
+int Model<Dim>::add_material(std::shared_ptr<const Material> material, const std::string& name) {
   if (!material) throw InputError("model: null material");
   if (materials_.size() >= 65535) throw InputError("model: too many materials");
   constants_.add(*material);
+  material_names_.push_back(name.empty() ? std::string(material->kind()) : name);
   materials_.push_back(std::move(material));
   material_lists_valid_ = false;
   return static_cast<int>(materials_.size()) - 1;
@@ -79,7 +80,7 @@ int Model<Dim>::add_rigid_body(const std::string& name, int ppc, double density,
                                const std::array<std::shared_ptr<const History>, Dim>& velocity) {
   if (!(density > 0.0 && std::isfinite(density))) throw InputError("rigid body '" + name + "': density must be > 0");
   const int body = new_body(name, ppc, true);
-  bodies_[body].material = add_material(std::make_shared<RigidMaterial>(density));
+  bodies_[body].material = add_material(std::make_shared<RigidMaterial>(density), "rigid " + name);
   set_rigid_velocity(body, velocity);
   return body;
 }
@@ -103,47 +104,31 @@ void Model<Dim>::set_contact_friction(int a, int b, double friction) {
   contact_.set_friction(bodies_, a, b, friction);
 }
 
-template <int Dim>
-std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,
-                             const std::function<bool(const Vec<Dim>&)>& inside,
-                             const std::function<Vec<Dim>(const Vec<Dim>&)>& outward) {
-  if (body < 0 || body >= static_cast<int>(bodies_.size())) throw InputError("fill: unknown body");
-  if (bodies_[body].rigid) material = bodies_[body].material;
-  if (material < 0 || material >= material_count()) throw InputError("fill: unknown material");
-  double candidates = 1.0;  // sub-points in the box: refuse what would exhaust memory
-  for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * bodies_[body].ppc;
-  if (candidates > 2e8) throw InputError("fill: over 200 million particles; use a larger cell or fewer ppc");
-  const int ppc = bodies_[body].ppc;
-  const double h = grid_.cell();
-  const double sub = h / ppc;
-  const double volume = std::pow(sub, Dim);
-  const double mass = materials_[material]->density() * volume;
-  const double half_width = 0.5 / ppc;  // cell units
+namespace {
 
+// Calls f(x) for every sub-point (ppc per axis) of the domain cells overlapping [lo, hi] that lies in
+// that box, in the order particles are created: sub-points within a cell, cells, last axis slowest.
+template <int Dim, class F>
+void for_each_sub_point(const Grid<Dim>& grid, int ppc, const Vec<Dim>& lo, const Vec<Dim>& hi, F&& f) {
+  const double h = grid.cell();
+  const double sub = h / ppc;
   // Cells overlapping the box, clamped to the domain (not the ghost layers).
-  const int g = grid_.ghost();
+  const int g = grid.ghost();
   std::array<int, Dim> c0{}, c1{};
   for (int d = 0; d < Dim; ++d) {
-    c0[d] = std::max(g, static_cast<int>(std::floor((lo[d] - grid_.origin()[d]) / h)));
-    c1[d] = std::min(grid_.cells(d) - 1 - g, static_cast<int>(std::floor((hi[d] - grid_.origin()[d]) / h)));
-    if (c1[d] < c0[d]) return 0;
+    c0[d] = std::max(g, static_cast<int>(std::floor((lo[d] - grid.origin()[d]) / h)));
+    c1[d] = std::min(grid.cells(d) - 1 - g, static_cast<int>(std::floor((hi[d] - grid.origin()[d]) / h)));
+    if (c1[d] < c0[d]) return;
   }
-  std::size_t added = 0;
   std::array<int, Dim> c = c0;
   std::array<int, Dim> k{};
-  // Odometer over cells x sub-points, last axis slowest.
   for (;;) {
     for (k.fill(0);;) {
       Vec<Dim> x;
-      for (int d = 0; d < Dim; ++d) x[d] = grid_.origin()[d] + c[d] * h + (k[d] + 0.5) * sub;
+      for (int d = 0; d < Dim; ++d) x[d] = grid.origin()[d] + c[d] * h + (k[d] + 0.5) * sub;
       bool in_box = true;
       for (int d = 0; d < Dim; ++d) in_box = in_box && x[d] >= lo[d] && x[d] <= hi[d];
-      if (in_box && inside(x)) {
-        const std::size_t p = particles_.add(x, mass, volume, half_width, body, material);
-        if (outward && bodies_[body].rigid) particles_.normal[p] = outward(x);
-        index_of_id_.clear();
-        ++added;
-      }
+      if (in_box) f(x);
       int d = 0;
       while (d < Dim && ++k[d] == ppc) k[d++] = 0;
       if (d == Dim) break;
@@ -152,11 +137,62 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
     while (d < Dim && ++c[d] > c1[d]) c[d] = c0[d], ++d;
     if (d == Dim) break;
   }
-  if (added && !bodies_[body].rigid) {
-    mass_threshold_ = std::max(mass_threshold_, 1e-15 * mass);
+}
+
+}  // namespace
+
+template <int Dim>
+std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,
+                             const std::function<bool(const Vec<Dim>&)>& inside,
+                             const std::function<Vec<Dim>(const Vec<Dim>&)>& outward) {
+  const bool rigid = body >= 0 && body < static_cast<int>(bodies_.size()) && bodies_[body].rigid;
+  if (!rigid && (material < 0 || material >= material_count())) throw InputError("fill: unknown material");
+  return fill(
+      body, [material](const Vec<Dim>&) { return material; }, lo, hi, inside, outward);
+}
+
+template <int Dim>
+std::vector<Vec<Dim>> Model<Dim>::fill_points(int ppc, const Vec<Dim>& lo, const Vec<Dim>& hi,
+                                              const std::function<bool(const Vec<Dim>&)>& inside) const {
+  if (ppc < 1 || ppc > kMaxParticlesPerCell) throw InputError("fill: ppc out of range");
+  double candidates = 1.0;  // sub-points in the box: refuse what would exhaust memory
+  for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * ppc;
+  if (candidates > 2e8) throw InputError("fill: over 200 million particles; use a larger cell or fewer ppc");
+  std::vector<Vec<Dim>> points;
+  for_each_sub_point(grid_, ppc, lo, hi, [&](const Vec<Dim>& x) {
+    if (inside(x)) points.push_back(x);
+  });
+  return points;
+}
+
+template <int Dim>
+std::size_t Model<Dim>::fill(int body, const std::function<int(const Vec<Dim>&)>& material_at, const Vec<Dim>& lo,
+                             const Vec<Dim>& hi, const std::function<bool(const Vec<Dim>&)>& inside,
+                             const std::function<Vec<Dim>(const Vec<Dim>&)>& outward) {
+  if (body < 0 || body >= static_cast<int>(bodies_.size())) throw InputError("fill: unknown body");
+  const Body& b = bodies_[body];
+  const auto points = fill_points(b.ppc, lo, hi, inside);
+  // Every point's material first, so that a point without a valid one adds nothing.
+  std::vector<int> material(points.size(), b.material);
+  for (std::size_t k = 0; k < points.size() && !b.rigid; ++k) {
+    material[k] = material_at(points[k]);
+    if (material[k] < 0 || material[k] >= material_count())
+      throw InputError("body '" + b.name + "': no known material for the particle at " + format_point<Dim>(points[k]));
   }
-  if (added) material_lists_valid_ = false;
-  return added;
+  const double volume = std::pow(grid_.cell() / b.ppc, Dim);
+  const double half_width = 0.5 / b.ppc;  // cell units
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Vec<Dim>& x = points[k];
+    const double mass = materials_[material[k]]->density() * volume;
+    const std::size_t p = particles_.add(x, mass, volume, half_width, body, material[k]);
+    if (outward && b.rigid) particles_.normal[p] = outward(x);
+    if (!b.rigid) mass_threshold_ = std::max(mass_threshold_, 1e-15 * mass);
+  }
+  if (!points.empty()) {
+    index_of_id_.clear();
+    material_lists_valid_ = false;
+  }
+  return points.size();
 }
 
 template <int Dim>

@@ -67,7 +67,8 @@ class Model {
   Model copy_without_fixes() const;
 
   // --- building ---
-  int add_material(std::shared_ptr<const Material> material);
+  // Returns the material's index, which particles carry; `name` labels it in outputs (default: its kind).
+  int add_material(std::shared_ptr<const Material> material, const std::string& name = "");
   // Puts `material` in the place of material `index` for the particles that have it. Its density must
   // be the same (the particles' masses come from it); its moduli may differ.
   void replace_material(int index, std::shared_ptr<const Material> material);
@@ -91,7 +92,17 @@ class Model {
   std::size_t fill(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi,
                    const std::function<bool(const Vec<Dim>&)>& inside,
                    const std::function<Vec<Dim>(const Vec<Dim>&)>& outward = {});
+  // The same with each particle's material chosen by its position (material regions in one body):
+  // material_at(x) gives a material index. Throws InputError naming the body and the point, adding
+  // nothing, where it gives none that exists (-1).
+  std::size_t fill(int body, const std::function<int(const Vec<Dim>&)>& material_at, const Vec<Dim>& lo,
+                   const Vec<Dim>& hi, const std::function<bool(const Vec<Dim>&)>& inside,
+                   const std::function<Vec<Dim>(const Vec<Dim>&)>& outward = {});
   std::size_t fill_box(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi);
+  // The positions a fill with ppc particles per cell per axis would give particles, in creation
+  // order; adds nothing.
+  std::vector<Vec<Dim>> fill_points(int ppc, const Vec<Dim>& lo, const Vec<Dim>& hi,
+                                    const std::function<bool(const Vec<Dim>&)>& inside) const;
   void add_fix(std::shared_ptr<Fix<Dim>> fix);
   // Detaches a fix (a phase's damping or monitor when the phase ends); false when it was not attached.
   bool remove_fix(const Fix<Dim>* fix);
@@ -129,6 +140,7 @@ class Model {
   ContactFields<Dim>& contact() { return contact_; }
   const ContactFields<Dim>& contact() const { return contact_; }
   const Material& material(int index) const { return *materials_[index]; }
+  const std::string& material_name(int index) const { return material_names_[index]; }
   int material_count() const { return static_cast<int>(materials_.size()); }
   double time() const { return time_; }
   double dt() const { return dt_; }  // the last step's
@@ -202,6 +214,7 @@ class Model {
   Grid<Dim> grid_;
   Particles<Dim> particles_;
   std::vector<std::shared_ptr<const Material>> materials_;
+  std::vector<std::string> material_names_;
   MaterialConstants constants_;  // per material, what the step reads
   std::vector<Body> bodies_;
   std::vector<std::shared_ptr<Fix<Dim>>> fixes_;

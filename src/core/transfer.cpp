@@ -1,6 +1,7 @@
 // The transfers of the step: particles to grid, the nodal update and constraints, grid to particles
 // and the MUSL re-map. With Contact, the bodies' own fields at shared nodes are handled by
 // ContactFields, and the particles near them read their own field's slots.
+#include "held_edges.hpp"
 #include "model.hpp"
 
 namespace seismpm {
@@ -70,6 +71,7 @@ void Model<Dim>::grid_to_particles(const StepContext& c) {
   auto& P = particles_;
   const auto& G = grid_;
   const auto& S = contact_.nodes();
+  const HeldEdges<Dim> held(G);
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
     [[maybe_unused]] int f = 0;
@@ -103,6 +105,19 @@ void Model<Dim>::grid_to_particles(const StepContext& c) {
     else
       gather(std::false_type{});
     P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
+    if (held.any() && held.near(P.x[p])) {  // the centre must not cross a held edge (held_edges.hpp)
+      held.mirror(st[p], vl, [&](int i) -> const Vec<Dim>& {
+        if constexpr (Contact) {
+          const int k = contact_.near_shared(support_.cell_of[p]) ? S.index(i) : -1;
+          if (k >= 0) return S.velocity[S.slot(k, f)];
+        }
+        return G.velocity[i];
+      });
+      P.x[p] += dt * vl;
+      P.u[p] += dt * vl;
+      held.keep_inside(P.x[p], P.u[p]);
+      continue;
+    }
     P.x[p] += dt * vl;
     P.u[p] += dt * vl;
   }

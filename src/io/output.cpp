@@ -73,9 +73,11 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
                         const std::string& phase) {
   const double t = model.time();
   const int n = static_cast<int>(files_.size());
-  const VtuMeta meta{t, phase};
   const auto& P = model.particles();
   const auto& bodies = model.bodies();
+  VtuMeta meta{t, phase, {}, {}};
+  for (int m = 0; m < model.material_count(); ++m) meta.material_names.push_back(model.material_name(m));
+  for (const Body& b : bodies) meta.body_names.push_back(b.name);
   auto rigid = [&](std::size_t p) { return bodies[P.body[p]].rigid; };
   const std::string name = numbered("particles", n);
   write_particles_vtu(settings_.dir + "/" + name, P, settings_.arrays, meta, [&](std::size_t p) { return !rigid(p); });
@@ -90,7 +92,7 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
   }
   if (settings_.grid) {
     const std::string grid_name = numbered("grid", n);
-    write_grid_vtu(settings_.dir + "/" + grid_name, model.grid(), model.mass_threshold(), meta);
+    write_grid_vtu(settings_.dir + "/" + grid_name, model.grid(), model.mass_threshold(), VtuMeta{t, phase, {}, {}});
     grid_files_.emplace_back(t, grid_name);
     write_file_atomically(settings_.dir + "/grid.pvd", pvd_text(grid_files_));
   }

@@ -20,7 +20,7 @@ namespace seismpm {
 
 namespace {
 
-// Time and phase as field data, which ParaView shows and reads.
+// Time, phase and the names of the material and body indices as field data, which ParaView shows.
 void add_meta(vtkUnstructuredGrid* grid, const VtuMeta& meta) {
   vtkNew<vtkDoubleArray> time;
   time->SetName("TimeValue");
@@ -30,6 +30,15 @@ void add_meta(vtkUnstructuredGrid* grid, const VtuMeta& meta) {
   phase->SetName("phase");
   phase->InsertNextValue(meta.phase);
   grid->GetFieldData()->AddArray(phase);
+  const auto add_names = [&](const char* array, const std::vector<std::string>& names) {
+    if (names.empty()) return;
+    vtkNew<vtkStringArray> a;
+    a->SetName(array);
+    for (const auto& name : names) a->InsertNextValue(name);
+    grid->GetFieldData()->AddArray(a);
+  };
+  add_names("material_names", meta.material_names);
+  add_names("body_names", meta.body_names);
 }
 
 void write(const std::string& path, vtkUnstructuredGrid* grid) {

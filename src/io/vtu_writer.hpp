@@ -23,6 +23,9 @@ VtuArray parse_vtu_array(const std::string& name);
 struct VtuMeta {
   double time = 0.0;
   std::string phase;
+  // The names of the material and body indices that the particle arrays "material" and "body" hold,
+  // by index (field data arrays material_names and body_names; none when empty).
+  std::vector<std::string> material_names, body_names;
 };
 
 // Writes the particles for which keep(p) is true to `path` atomically. Throws OutputError.

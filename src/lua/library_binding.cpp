@@ -16,8 +16,9 @@ const Key kSlopeKeys[] = {
     arg::number("angle", "degrees", "the face's inclination").in(Interval{0, 90, true, true}).required(),
 };
 const Key kLayersKeys[] = {
-    arg::positional("{top = y, name = ...}, ...",
-                    "the layers from the bottom up by their top elevation (m); name defaults to layerN"),
+    arg::positional("{top = y or thickness = t, name = ..., material = ...}, ...",
+                    "the layers from the bottom up, each by its top elevation or its thickness (m), with its "
+                    "material (mpm.material.*) for m:body's regions; name defaults to layerN"),
     arg::number("left", "m", "left end").required(),
     arg::number("right", "m", "right end").required(),
     arg::number("base", "m", "bottom of the lowest layer").def(0),
@@ -30,10 +31,11 @@ const Function kLibrary[] = {
      "ground to `right`. Returns an mpm.shape.polygon.",
      "local s = mpm.geometry.slope{ left = 0, right = 0.9, crest = {0.35, 0.53}, toe_level = 0.2, angle = 45 }"},
     {"mpm.geometry.layers", nullptr, nullptr, kLayersKeys,
-     "Horizontal layers from `left` to `right`, listed from the bottom up by their top elevation: returns a list "
-     "of { name =, shape = rectangle }.",
-     "for _, l in ipairs(mpm.geometry.layers{ left = 0, right = 10, {top = 2, name = \"clay\"}, {top = 5, name = "
-     "\"sand\"} }) do print(l.name) end"},
+     "Horizontal layers from `left` to `right`, listed from the bottom up by their top elevation or their "
+     "thickness: returns a list of { name =, shape = rectangle, material = }, which m:body takes as its regions: "
+     "layered ground as one body, without interfaces (its shape, a slope say, cuts the layers).",
+     "local ground = m:body{ name = \"ground\", shape = slope, regions = mpm.geometry.layers{ left = 0, right = 0.9, "
+     "{top = 0.2, name = \"clay\", material = clay}, {thickness = 0.4, material = sand} } }"},
 };
 
 // The message of a failed check of mpm._check_args(name, t), or "" when t passes.

@@ -24,7 +24,11 @@ const Key kDilation = arg::number("dilation", "degrees", "dilation angle psi (0:
                           .in_text("in [0, friction]")
                           .def(0);
 
-const Key kLinearElasticKeys[] = {kDensity, kYoung, kPoisson};
+// Shown in outputs beside the material index particles carry.
+const Key kName =
+    arg::string("name", "a label for outputs: the .vtu files' material_names, m:materials()").shown("its kind");
+
+const Key kLinearElasticKeys[] = {kDensity, kYoung, kPoisson, kName};
 const Key kSofteningKeys[] = {
     arg::number("cohesion", "Pa", "residual cohesion").in_text("in [0, cohesion]").shown("cohesion (not softened)"),
     arg::number("friction", "degrees", "residual friction angle")
@@ -43,6 +47,7 @@ const Key kMohrCoulombKeys[] = {
     kDilation,
     arg::number("tension", "Pa", "tensile strength (0: none)").in_text("in [0, c cot(phi)]").def(0),
     arg::table("softening", kSofteningKeys, "linear softening of c and phi with accumulated plastic shear strain"),
+    kName,
 };
 const Key kDruckerPragerKeys[] = {
     kDensity,
@@ -55,6 +60,7 @@ const Key kDruckerPragerKeys[] = {
     arg::choice("fit", "plane_strain|outer|inner", "plane_strain",
                 "how the cone fits Mohr-Coulomb: the same plane-strain limit load, or through its compression "
                 "(outer) or extension (inner) corners"),
+    kName,
 };
 
 int material_tostring(lua_State* L) {
@@ -81,14 +87,20 @@ void read_strength(const Args& a, StrengthParameters& s) {
   s.tension = a.number("tension");
 }
 
+// The material object, its summary led by its name when it has one.
+int push_material(lua_State* L, const Args& a, std::shared_ptr<const Material> material, const std::string& summary) {
+  const std::string name = a.string("name", "");
+  push_object(L, MaterialObject{std::move(material), name.empty() ? summary : "'" + name + "' " + summary, name});
+  return 1;
+}
+
 int linear_elastic(lua_State* L) {
   const Args a(L, 1, kLinearElasticKeys);
   const double density = a.number("density"), young = a.number("young"), poisson = a.number("poisson");
   auto material = std::make_shared<LinearElastic>(density, young, poisson);
   std::ostringstream os;
   os << "linear_elastic: density " << density << " kg/m3, E " << young << " Pa, nu " << poisson;
-  push_object(L, MaterialObject{std::move(material), os.str()});
-  return 1;
+  return push_material(L, a, std::move(material), os.str());
 }
 
 int mohr_coulomb(lua_State* L) {
@@ -110,8 +122,7 @@ int mohr_coulomb(lua_State* L) {
   if (p.softening)
     os << ", softening to c " << p.residual_cohesion << " Pa, phi " << p.residual_friction << " at plastic strain "
        << p.softening_strain;
-  push_object(L, MaterialObject{std::move(material), os.str()});
-  return 1;
+  return push_material(L, a, std::move(material), os.str());
 }
 
 int drucker_prager(lua_State* L) {
@@ -125,8 +136,7 @@ int drucker_prager(lua_State* L) {
   std::ostringstream os;
   os << "drucker_prager (" << fit << " fit): density " << p.density << " kg/m3, E " << p.young << " Pa, nu "
      << p.poisson << ", c " << p.cohesion << " Pa, phi " << p.friction << ", psi " << p.dilation;
-  push_object(L, MaterialObject{std::move(material), os.str()});
-  return 1;
+  return push_material(L, a, std::move(material), os.str());
 }
 
 const Function kMaterial[] = {

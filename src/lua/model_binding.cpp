@@ -133,6 +133,17 @@ int model_bodies(lua_State* L) {
   return 1;
 }
 
+// The names of the material indices, as a list: entry k + 1 names index k.
+int model_materials(lua_State* L) {
+  const auto& m = model_of(L);
+  lua_createtable(L, m.material_count(), 0);
+  for (int k = 0; k < m.material_count(); ++k) {
+    lua_pushstring(L, m.material_name(k).c_str());
+    lua_rawseti(L, -2, k + 1);
+  }
+  return 1;
+}
+
 const Function kModel[] = {
     {"mpm.model", &guarded<model_new>, nullptr, kModelKeys, "Creates a 2D plane-strain model on a background grid.",
      "local m = mpm.model{ domain = {{0, 0}, {1, 0.6}}, cell = 0.01, shape = \"gimp\" }"},
@@ -157,6 +168,14 @@ const Function kModel[] = {
      {},
      "The bodies as a table by name.",
      "for name, b in pairs(m:bodies()) do print(name, b:count()) end"},
+    {"model:materials",
+     &guarded<model_materials>,
+     "m:materials()",
+     {},
+     "The materials' names (key name of mpm.material.*, else the kind; a rigid body's stand-in is \"rigid "
+     "<body>\") as a list in index order: entry k + 1 names the material index k that the particle field "
+     "material holds (the .vtu files carry the same list as material_names).",
+     "for k, name in ipairs(m:materials()) do print(k - 1, name) end"},
 };
 
 }  // namespace

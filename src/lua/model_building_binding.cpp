@@ -1,6 +1,7 @@
 // Building a model: m:body, m:rigid, m:contact, m:set_friction, m:fix, m:probe.
 #include <array>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "api_docs.hpp"
@@ -15,11 +16,20 @@ namespace {
 const Key kPpc = arg::integer("ppc", "particles per cell along each axis").in(closed(1, kMaxParticlesPerCell)).def(2);
 const Key kShape = arg::custom("shape", "mpm.shape.*", "", "the region filled, inside the domain").required();
 
+const Key kRegionKeys[] = {
+    arg::custom("shape", "mpm.shape.*", "", "where the material applies (it may reach beyond the body)").required(),
+    arg::object("material", kMaterialType, "the material of the body's particles inside the shape").required(),
+    arg::string("name", "names the region in messages").shown("regionN"),
+};
 const Key kBodyKeys[] = {
     arg::string("name", "the body's name, unique in the model").shown("bodyN"),
-    arg::object("material", kMaterialType, "its material (mpm.material.*)").required(),
+    arg::object("material", kMaterialType, "its material (mpm.material.*); with regions, that of particles in none")
+        .shown("required without regions"),
     kShape,
     kPpc,
+    arg::custom("regions", "{ {shape =, material =, name =}, ... }", "",
+                "materials inside the body: each particle takes the material of the last region whose shape holds "
+                "it (mpm.geometry.layers makes a list)"),
 };
 const Key kRigidKeys[] = {
     arg::string("name", "the body's name, unique in the model").shown("rigidN"),
@@ -63,13 +73,74 @@ std::string body_name_argument(const Args& a, const ModelHandle& h, const char* 
   return name;
 }
 
-void fill_region(ModelHandle& h, int body, int material, const Region& region, int ppc) {
+using MaterialAt = std::function<int(const Vec<2>&)>;
+
+void fill_region(ModelHandle& h, int body, const MaterialAt& material_at, const Region& region, int ppc) {
   const std::size_t added = h.model.fill(
-      body, material, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); },
+      body, material_at, region.lower(), region.upper(), [&](const Vec<2>& x) { return region.contains(x); },
       [&](const Vec<2>& x) { return region.outward_normal(x); });
   if (added == 0)
     throw Error("key 'shape': " + region.describe() + " holds no particle at ppc = " + std::to_string(ppc) +
                 " (smaller than a particle spacing of " + std::to_string(h.model.grid().cell() / ppc) + " m?)");
+}
+
+struct MaterialRegion {
+  std::string name;
+  std::shared_ptr<const Region> shape;
+  int material;
+  std::size_t particles = 0;  // of the body that took its material
+};
+
+// The list under key 'regions' (none when absent), each entry checked against kRegionKeys.
+std::vector<MaterialRegion> regions_argument(const Args& a, ModelHandle& h) {
+  std::vector<MaterialRegion> regions;
+  if (!a.has("regions")) return regions;
+  lua_State* L = a.state();
+  a.push("regions");
+  const int list = lua_gettop(L);
+  const lua_Integer n = lua_istable(L, list) ? static_cast<lua_Integer>(lua_rawlen(L, list)) : 0;
+  if (n == 0)
+    throw Error("key 'regions' must be a list { {shape =, material =}, ... } of at least one region, got " +
+                type_name(L, list));
+  for (lua_Integer i = 1; i <= n; ++i) {
+    lua_rawgeti(L, list, i);
+    const std::string where = "regions[" + std::to_string(i) + "]";
+    const Args r(L, -1, kRegionKeys, where.c_str());
+    const std::string name = r.string("name", "region" + std::to_string(i));
+    regions.push_back({name, object_argument<ShapeObject>(r, "shape").region,
+                       h.material(object_argument<MaterialObject>(r, "material"))});
+    lua_pop(L, 1);
+  }
+  lua_pop(L, 1);  // the argument table keeps the list alive
+  return regions;
+}
+
+// The material of a particle at x: the last region holding it, else the body's own (-1: none, an error).
+MaterialAt material_chooser(std::vector<MaterialRegion>& regions, int fallback, const std::string& body) {
+  return [&regions, fallback, body](const Vec<2>& x) {
+    for (auto r = regions.rbegin(); r != regions.rend(); ++r)
+      if (r->shape->contains(x)) return ++r->particles, r->material;
+    if (fallback < 0)
+      throw Error("body '" + body + "': the particle at " + point_text(x) +
+                  " lies in none of its regions, and the body has no material of its own (key 'material')");
+    return fallback;
+  };
+}
+
+// Before the body exists: every particle has a material, and every region gives its material to some.
+void check_regions(const ModelHandle& h, std::vector<MaterialRegion>& regions, const MaterialAt& material_at,
+                   const Region& shape, int ppc, const std::string& body) {
+  if (regions.empty()) return;
+  for (const Vec<2>& x :
+       h.model.fill_points(ppc, shape.lower(), shape.upper(), [&](const Vec<2>& x) { return shape.contains(x); }))
+    material_at(x);
+  for (auto& r : regions) {
+    if (r.particles == 0)
+      throw Error("body '" + body + "': region '" + r.name + "' (" + r.shape->describe() +
+                  ") gives none of its particles its material: outside the body, thinner than the particle "
+                  "spacing, or covered by later regions?");
+    r.particles = 0;
+  }
 }
 
 int model_body(lua_State* L) {
@@ -77,11 +148,16 @@ int model_body(lua_State* L) {
   ModelHandle& h = *handle;
   const Args a(L, 2, kBodyKeys);
   const std::string name = body_name_argument(a, h, "body");
-  const auto material = object_argument<MaterialObject>(a, "material").material;
+  if (!a.has("material") && !a.has("regions"))
+    throw Error("key 'material' must be a material, got nil (or give regions = { ... })");
+  const int material = a.has("material") ? h.material(object_argument<MaterialObject>(a, "material")) : -1;
+  auto regions = regions_argument(a, h);
   const int ppc = a.integer("ppc");
   const auto region = shape_argument(a, h);
+  const MaterialAt material_at = material_chooser(regions, material, name);
+  check_regions(h, regions, material_at, *region, ppc, name);
   const int body = h.model.add_body(name, ppc);
-  fill_region(h, body, h.material(material), *region, ppc);
+  fill_region(h, body, material_at, *region, ppc);
   push_object(L, BodyObject{handle, body});
   return 1;
 }
@@ -99,7 +175,8 @@ int model_rigid(lua_State* L) {
   lua_pop(L, 1);
   const auto region = shape_argument(a, h);
   const int body = h.model.add_rigid_body(name, ppc, density, velocity);
-  fill_region(h, body, -1, *region, ppc);
+  fill_region(
+      h, body, [](const Vec<2>&) { return -1; }, *region, ppc);  // a rigid body has its own
   push_object(L, BodyObject{handle, body});
   return 1;
 }
@@ -167,8 +244,12 @@ int model_probe(lua_State* L) {
 
 const Function kBuilding[] = {
     {"model:body", &guarded<model_body>, nullptr, kBodyKeys,
-     "Fills a shape with particles of a material and returns the body.",
-     "local soil = m:body{ name = \"soil\", material = sand, shape = mpm.shape.rectangle{0, 0, 1, 0.5}, ppc = 2 }"},
+     "Fills a shape with particles of a material and returns the body. With regions, one body holds several "
+     "materials (layered ground without interfaces): each particle takes the material of the last region whose "
+     "shape contains it, else the body's material; the particle field material and the .vtu files' "
+     "material_names show which.",
+     "local soil = m:body{ name = \"soil\", material = sand, shape = mpm.shape.rectangle{0, 0, 1, 0.5}, ppc = 2, "
+     "regions = { { shape = mpm.shape.rectangle{0, 0, 1, 0.2}, material = clay } } }"},
     {"model:rigid", &guarded<model_rigid>, nullptr, kRigidKeys,
      "A rigid body of prescribed-velocity particles (a shaking-table box, the surface under a landslide): fills the "
      "shape (rectangle, polygon, or polyline with a thickness) and returns the body. Each step the nodes of the "

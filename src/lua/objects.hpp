@@ -22,6 +22,12 @@ inline constexpr const char* kMaterialType = "material";
 inline constexpr const char* kShapeType = "shape";
 inline constexpr const char* kHistoryType = "history";
 
+struct MaterialObject {
+  std::shared_ptr<const Material> material;
+  std::string summary;
+  std::string name;  // "" when none was given
+};
+
 // A simulation (the model, its probes, output, damping and runs) with what the Lua side adds to it:
 // the materials it knows by their Lua objects.
 struct ModelHandle {
@@ -32,11 +38,11 @@ struct ModelHandle {
   Model<2>& model = simulation.model();  // what most bindings build and inspect
   std::map<const Material*, int> material_index;
 
-  int material(const std::shared_ptr<const Material>& m) {
-    auto it = material_index.find(m.get());
+  int material(const MaterialObject& m) {
+    auto it = material_index.find(m.material.get());
     if (it != material_index.end()) return it->second;
-    const int index = model.add_material(m);
-    material_index[m.get()] = index;
+    const int index = model.add_material(m.material, m.name);
+    material_index[m.material.get()] = index;
     return index;
   }
 };
@@ -51,10 +57,6 @@ struct BodyObject {
 struct ProbeObject {
   std::shared_ptr<ModelHandle> handle;
   std::shared_ptr<Probe<2>> probe;
-};
-struct MaterialObject {
-  std::shared_ptr<const Material> material;
-  std::string summary;
 };
 struct ShapeObject {
   std::shared_ptr<const Region> region;

@@ -147,6 +147,44 @@ TEST_CASE("rigid bodies go to their own files", "[io][vtu]") {
   CHECK(phase->GetValue(0) == "gravity");
 }
 
+// The material and body indices the particles carry, named in each file: a layered body's materials
+// can be told apart in ParaView.
+TEST_CASE("the particle files name the material and body indices", "[io][vtu][regions]") {
+  const std::string dir = fresh_dir("names");
+  ModelSettings<2> s;
+  s.cell = 0.1;
+  Model<2> m(s);
+  const int sand = m.add_material(std::make_shared<LinearElastic>(1800, 1e6, 0.3), "sand");
+  const int clay = m.add_material(std::make_shared<LinearElastic>(2000, 1e6, 0.3));
+  m.fill(
+      m.add_body("ground", 2), [&](const Vec<2>& x) { return x[1] < 0.5 ? clay : sand; }, Vec<2>(0.0, 0.3),
+      Vec<2>(1.0, 0.8), [](const Vec<2>&) { return true; });
+  m.fill_box(m.add_body("base", 1, true), -1, Vec<2>(0.0, 0.0), Vec<2>(1.0, 0.2));
+  Output<2> out(OutputSettings{dir, 0.1});
+  out.write(m, {}, "gravity");
+  auto grid = read_vtu(dir + "/particles_000000.vtu");
+  auto* materials = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("material_names"));
+  auto* bodies = vtkStringArray::SafeDownCast(grid->GetFieldData()->GetAbstractArray("body_names"));
+  REQUIRE(materials);
+  REQUIRE(bodies);
+  REQUIRE(materials->GetNumberOfValues() == 3);
+  CHECK(materials->GetValue(0) == "sand");
+  CHECK(materials->GetValue(1) == "linear_elastic");  // no name given: the kind
+  CHECK(materials->GetValue(2) == "rigid base");
+  REQUIRE(bodies->GetNumberOfValues() == 2);
+  CHECK(bodies->GetValue(0) == "ground");
+  CHECK(bodies->GetValue(1) == "base");
+  // Each particle's index names the material of its layer (cell rows 0.3-0.5 clay, 0.5-0.8 sand).
+  auto* material = grid->GetPointData()->GetArray("material");
+  int wrong = 0;
+  for (vtkIdType k = 0; k < grid->GetNumberOfPoints(); ++k) {
+    const std::string name = materials->GetValue(static_cast<vtkIdType>(material->GetTuple1(k)));
+    wrong += name != (grid->GetPoint(k)[1] < 0.5 ? "linear_elastic" : "sand");
+  }
+  CHECK(grid->GetNumberOfPoints() == 200);
+  CHECK(wrong == 0);
+}
+
 TEST_CASE("a run that fails between two writes leaves valid files", "[io][vtu]") {
   const std::string dir = fresh_dir("failed");
   test::LuaFixture f;
