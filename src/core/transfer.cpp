@@ -105,7 +105,9 @@ void Model<Dim>::grid_to_particles(const StepContext& c) {
     else
       gather(std::false_type{});
     P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
-    if (held.any() && held.near(P.x[p])) {  // the centre must not cross a held edge (held_edges.hpp)
+    // The centre must not cross a held edge (held_edges.hpp). Linear shapes give a node beyond the
+    // edge no weight: their centres near it already move at the linear d v_1 and never reach it.
+    if (Shape::K > 2 && held.any() && held.near(P.x[p])) {
       held.mirror(st[p], vl, [&](int i) -> const Vec<Dim>& {
         if constexpr (Contact) {
           const int k = contact_.near_shared(support_.cell_of[p]) ? S.index(i) : -1;
