@@ -180,6 +180,10 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
       {std::string("mpm.model{ ") + domain + ", cell = 0.1, cfl = 0 }", "key 'cfl' must be in (0, 1], got 0"},
       {std::string("mpm.model{ ") + domain + ", cell = 0.1, max_dilation = 0.5 }",
        "key 'max_dilation' must be 0 or >= 1, got 0.5"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, crack_closure = 'no' }",
+       "key 'crack_closure' must be true or false, got string"},
+      {std::string("mpm.model{ ") + domain + ", cell = 0.1, cell_volumetric_strain = 0 }",
+       "key 'cell_volumetric_strain' must be true or false, got number"},
       // The kernel's rule, in the kernel: at least 2 cells after rounding up (Grid, Model).
       {"mpm.model{ domain = {{0, 0}, {1, 0.1}}, cell = 0.1 }",
        "mpm.model: model: the domain must span at least 2 cells"},
@@ -469,6 +473,37 @@ TEST_CASE("console completion offers globals, fields and methods", "[lua][consol
     assert(has(mpm._complete("blk:cen"), "blk:centroid"))
     assert(has(mpm._complete("hel"), "help"))
     assert(#mpm._complete("nothing.here") == 0)
+  )");
+  CHECK(error == "");
+}
+
+TEST_CASE("mpm.model's kernel switches reach the kernel: a collapsing sand column differs without them",
+          "[lua][model]") {
+  LuaFixture f;
+  const std::string error = f.error_of(R"(
+    -- The same 60 steps of a c = 0 column collapsing at a free right side, with each switch on and off:
+    -- the volumetric averaging changes the stresses, crack closure the volumes of opened particles.
+    local function run(keys)
+      local settings = { domain = {{0, 0}, {0.4, 0.2}}, cell = 0.02 }
+      for k, v in pairs(keys) do settings[k] = v end
+      local m = mpm.model(settings)
+      local sand = mpm.material.mohr_coulomb{ density = 2650, young = 0.84e6, poisson = 0.3, friction = 20 }
+      local b = m:body{ name = "sand", material = sand, shape = mpm.shape.rectangle{ 0, 0, 0.1, 0.1 } }
+      m:fix{ side = "left", dof = "x" }; m:fix{ side = "bottom", dof = "xy" }
+      m:step(60)
+      return b:field("syy"), b:field("volume")
+    end
+    local function same(a, b)
+      for i = 1, #a do if a[i] ~= b[i] then return false end end
+      return true
+    end
+    local s0, v0 = run{}
+    local s1 = run{ cell_volumetric_strain = false }
+    local _, v2 = run{ crack_closure = false }
+    local s3 = run{ cell_volumetric_strain = true, crack_closure = true }
+    assert(same(s0, s3), "the defaults are the switches on")
+    assert(not same(s0, s1), "cell_volumetric_strain = false changed nothing")
+    assert(not same(v0, v2), "crack_closure = false changed nothing")
   )");
   CHECK(error == "");
 }
