@@ -330,10 +330,11 @@ void ContactFields<Dim>::resolve(VelocityStage stage, const Grid<Dim>& grid, dou
   if (updated) sum_reactions(dt);
 }
 
+// The fields at shared node k as the node-level contact code takes them.
 template <int Dim>
-void ContactFields<Dim>::resolve_node(int k, bool updated, const Grid<Dim>& grid, double dt, double min_mass) {
+NodeFields<Dim> ContactFields<Dim>::node_fields(int k) const {
   constexpr int kSlots = SharedNodes<Dim>::kSlots;
-  auto& S = shared_;
+  const auto& S = shared_;
   NodeFields<Dim> nf;
   nf.count = S.fields(k);
   for (int j = 0; j < nf.count; ++j) {
@@ -343,6 +344,14 @@ void ContactFields<Dim>::resolve_node(int k, bool updated, const Grid<Dim>& grid
     nf.gradient[j] = S.gradient[s];
     nf.velocity[j] = S.velocity[s];
   }
+  return nf;
+}
+
+template <int Dim>
+void ContactFields<Dim>::resolve_node(int k, bool updated, const Grid<Dim>& grid, double dt, double min_mass) {
+  constexpr int kSlots = SharedNodes<Dim>::kSlots;
+  auto& S = shared_;
+  NodeFields<Dim> nf = node_fields(k);
   Vec<Dim> force_on[kSlots];
   for (auto& f : force_on) f.setZero();
   resolve_contact<Dim>(nf, rules_, min_mass, grid.cell(), updated ? dt : 0.0, force_on);
@@ -392,31 +401,22 @@ void ContactFields<Dim>::damp_forces(double alpha, double min_mass) {
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < count; ++k) {
     if (held(k)) continue;
-    NodeFields<Dim> nf;
-    nf.count = S.fields(k);
-    for (int j = 0; j < nf.count; ++j) {
-      const int s = k * kSlots + j;
-      nf.field[j] = S.field_of_slot(s);
-      nf.mass[j] = S.mass[s];
-      nf.gradient[j].setZero();
-      nf.velocity[j].setZero();
-    }
+    const NodeFields<Dim> nf = node_fields(k);
     const contact_detail::FieldGroups<Dim> g(nf, rules_, min_mass);
     for (int j = 0; j < nf.count; ++j) {
+      // A field below the minimum mass is in no group: it is damped on its own force.
       const bool alone = !g.active[j];
       if (!alone && !g.representative(j)) continue;
+      const auto member = [&](int l) { return alone ? l == j : g.active[l] && g.group[l] == j; };
       Vec<Dim> force = Vec<Dim>::Zero(), momentum = Vec<Dim>::Zero();
       for (int l = 0; l < nf.count; ++l)
-        if (alone ? l == j : g.active[l] && g.group[l] == j) {
-          force += S.force[k * kSlots + l];
-          momentum += S.momentum[k * kSlots + l];
-        }
+        if (member(l)) force += S.force[k * kSlots + l], momentum += S.momentum[k * kSlots + l];
       for (int d = 0; d < Dim; ++d) {
         const double v = momentum[d];  // same sign as the group's velocity
         const double sign = (v > 0.0) - (v < 0.0);
         const double damping = -(alpha * std::abs(force[d]) * sign);
         for (int l = 0; l < nf.count; ++l)
-          if (alone ? l == j : g.active[l] && g.group[l] == j) {
+          if (member(l)) {
             const int s = k * kSlots + l;
             S.force[s][d] += alone ? damping : (S.mass[s] / g.mass[j]) * damping;
           }

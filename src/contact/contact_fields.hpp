@@ -94,6 +94,7 @@ class ContactFields {
   int mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& cells);
   template <class Shape>
   void flag_cells_near_shared(const Grid<Dim>& grid, const CellIndex<Dim>& cells);
+  NodeFields<Dim> node_fields(int k) const;
   void resolve_node(int k, bool updated, const Grid<Dim>& grid, double dt, double min_mass);
   Vec<Dim> group_start_velocity(int k, const NodeFields<Dim>& nf, int j, double min_mass) const;
   void sum_reactions(double dt);

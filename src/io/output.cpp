@@ -62,6 +62,14 @@ std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& prob
 }
 
 template <int Dim>
+VtuMeta particle_meta(const Model<Dim>& model, const std::string& phase) {
+  VtuMeta meta{model.time(), phase, {}, {}};
+  for (int m = 0; m < model.material_count(); ++m) meta.material_names.push_back(model.material_name(m));
+  for (const Body& b : model.bodies()) meta.body_names.push_back(b.name);
+  return meta;
+}
+
+template <int Dim>
 Output<Dim>::Output(OutputSettings settings) : settings_(std::move(settings)) {
   if (!(settings_.every > 0.0)) throw InputError("output: every must be > 0 (s)");
   if (settings_.arrays.empty()) throw InputError("output: no fields to write");
@@ -75,9 +83,7 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
   const int n = static_cast<int>(files_.size());
   const auto& P = model.particles();
   const auto& bodies = model.bodies();
-  VtuMeta meta{t, phase, {}, {}};
-  for (int m = 0; m < model.material_count(); ++m) meta.material_names.push_back(model.material_name(m));
-  for (const Body& b : bodies) meta.body_names.push_back(b.name);
+  const VtuMeta meta = particle_meta(model, phase);
   auto rigid = [&](std::size_t p) { return bodies[P.body[p]].rigid; };
   const std::string name = numbered("particles", n);
   write_particles_vtu(settings_.dir + "/" + name, P, settings_.arrays, meta, [&](std::size_t p) { return !rigid(p); });
@@ -133,6 +139,8 @@ void Output<Dim>::write_reactions(const Model<Dim>& model, const std::string& ph
 
 template std::string probes_csv_text<2>(const std::vector<std::shared_ptr<Probe<2>>>&);
 template std::string probes_csv_text<3>(const std::vector<std::shared_ptr<Probe<3>>>&);
+template VtuMeta particle_meta<2>(const Model<2>&, const std::string&);
+template VtuMeta particle_meta<3>(const Model<3>&, const std::string&);
 template class Output<2>;
 template class Output<3>;
 

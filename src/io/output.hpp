@@ -48,6 +48,11 @@ class Output {
   void write_reactions(const Model<Dim>& model, const std::string& phase);
 };
 
+// What a particle file says of the model's state beside its arrays: the time, the phase, and the names
+// of the material and body indices.
+template <int Dim>
+VtuMeta particle_meta(const Model<Dim>& model, const std::string& phase);
+
 // The PVD collection text for (time, file) pairs.
 std::string pvd_text(const std::vector<std::pair<double, std::string>>& files);
 // probes.csv: "time (s)" and "<probe>.<field>" columns; a row per sampled time.

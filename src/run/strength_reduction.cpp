@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "core/local_damping.hpp"
 #include "gravity_phase.hpp"
+#include "io/output.hpp"
 #include "io/vtu_writer.hpp"
 #include "simulation.hpp"
 
@@ -195,12 +196,8 @@ std::unique_ptr<Model<Dim>> reference_state(const Model<Dim>& model, const Stren
 
 template <int Dim>
 void write_mechanism(const Model<Dim>& model, const std::string& path, double srf) {
-  VtuMeta meta;
-  meta.time = model.time();
-  meta.phase = "strength_reduction srf=" + srf_text(srf);
-  for (int m = 0; m < model.material_count(); ++m) meta.material_names.push_back(model.material_name(m));
-  for (const Body& b : model.bodies()) meta.body_names.push_back(b.name);
-  write_particles_vtu<Dim>(path, model.particles(), all_vtu_arrays(), meta,
+  write_particles_vtu<Dim>(path, model.particles(), all_vtu_arrays(),
+                           particle_meta(model, "strength_reduction srf=" + srf_text(srf)),
                            [&](std::size_t p) { return deformable(model, p); });
 }
 

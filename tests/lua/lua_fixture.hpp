@@ -20,6 +20,22 @@ struct LuaFixture {
     return s;
   }
 
+  // A global the chunks set, as a number (0 when it is not one) or as a truth value.
+  double number(const char* name) {
+    lua_State* L = runtime.state();
+    lua_getglobal(L, name);
+    const double v = lua_tonumber(L, -1);
+    lua_pop(L, 1);
+    return v;
+  }
+  bool truth(const char* name) {
+    lua_State* L = runtime.state();
+    lua_getglobal(L, name);
+    const bool v = lua_toboolean(L, -1);
+    lua_pop(L, 1);
+    return v;
+  }
+
   // Runs a chunk; returns "" on success, the error message otherwise.
   std::string error_of(const std::string& code) {
     std::string error;

@@ -34,19 +34,11 @@ TEST_CASE("mpm.lem on a model's slope matches the core solver on the same geomet
     fos_kh = mpm.lem{ model = m, kh = 0.1, search = { centres = {{0, 12}, {25, 40}}, radii = {5, 40} } }.fos
   )");
   REQUIRE(error == "");
-  lua_State* L = f.runtime.state();
-  auto global = [L](const char* name) {
-    lua_getglobal(L, name);
-    const double v = lua_tonumber(L, -1);
-    lua_pop(L, 1);
-    return v;
-  };
+  auto global = [&f](const char* name) { return f.number(name); };
   CHECK(global("fos") == Approx(core.fos).epsilon(0.02));
   CHECK(global("ky") == Approx(core.ky).epsilon(0.05));
   CHECK(global("points") == 81);
-  lua_getglobal(L, "listed");
-  CHECK(lua_toboolean(L, -1));  // circle = {xc, yc, r} as a list too
-  lua_pop(L, 1);
+  CHECK(f.truth("listed"));  // circle = {xc, yc, r} as a list too
   CHECK(global("first_x") < global("last_x"));
   CHECK(global("yc") - global("radius") >= -1e-9);
   CHECK(global("fos_kh") == Approx(critical_circle(slope, 0.1).fos).epsilon(0.02));
@@ -72,21 +64,13 @@ TEST_CASE("mpm.lem with Spencer's method matches the core solver, on circles and
     plane_fos, plane_ky, no_circle, points = p.fos, p.ky, p.circle == nil, #p.surface
   )");
   REQUIRE(error == "");
-  lua_State* L = f.runtime.state();
-  auto global = [L](const char* name) {
-    lua_getglobal(L, name);
-    const double v = lua_tonumber(L, -1);
-    lua_pop(L, 1);
-    return v;
-  };
+  auto global = [&f](const char* name) { return f.number(name); };
   CHECK(global("circle_fos") == Approx(core_circle.fos).epsilon(0.02));
   CHECK(global("theta") == Approx(core_circle.theta).margin(5));
   CHECK(global("plane_fos") == Approx(core_plane.fos).epsilon(0.02));
   CHECK(global("plane_ky") == Approx(core_plane.ky).epsilon(0.05));
   CHECK(global("points") == 81);
-  lua_getglobal(L, "no_circle");
-  CHECK(lua_toboolean(L, -1));
-  lua_pop(L, 1);
+  CHECK(f.truth("no_circle"));
 }
 
 TEST_CASE("mpm.lem: errors name the key or the material", "[lua][lem][errors]") {
@@ -130,8 +114,7 @@ TEST_CASE("mpm.lem: bodies of two materials make two horizontal bands", "[lua][l
     fos = mpm.lem{ model = m }.fos
   )");
   REQUIRE(error == "");
-  lua_getglobal(f.runtime.state(), "fos");
-  const double fos = lua_tonumber(f.runtime.state(), -1);
+  const double fos = f.number("fos");
   CHECK(fos == Approx(critical_circle(slope, 0).fos).epsilon(0.02));
   CHECK(fos < 1.3);
 }
@@ -151,6 +134,5 @@ TEST_CASE("mpm.lem: a Drucker-Prager slope on a rigid base gives the Mohr-Coulom
     fos = mpm.lem{ model = m }.fos
   )");
   REQUIRE(error == "");
-  lua_getglobal(f.runtime.state(), "fos");
-  CHECK(lua_tonumber(f.runtime.state(), -1) == Approx(critical_circle(slope, 0).fos).epsilon(0.02));
+  CHECK(f.number("fos") == Approx(critical_circle(slope, 0).fos).epsilon(0.02));
 }

@@ -21,13 +21,6 @@ const char* kSlope = R"(
   m:fix{ side = "right", dof = "x" }
 )";
 
-double global(lua_State* L, const char* name) {
-  lua_getglobal(L, name);
-  const double v = lua_tonumber(L, -1);
-  lua_pop(L, 1);
-  return v;
-}
-
 }  // namespace
 
 TEST_CASE("m:strength_reduction on Griffiths & Lane example 1: 1.4 within 5 %, beside Bishop's", "[lua][srf]") {
@@ -47,24 +40,22 @@ TEST_CASE("m:strength_reduction on Griffiths & Lane example 1: 1.4 within 5 %, b
     lem = mpm.lem{ model = m }.fos
   )");
   REQUIRE(error == "");
+  auto global = [&f](const char* name) { return f.number(name); };
   lua_State* L = f.runtime.state();
-  CHECK(global(L, "fos") == Approx(1.4).epsilon(0.05));
-  CHECK(global(L, "fos") == Approx(global(L, "lem")).epsilon(0.05));  // Bishop: 1.378 on this model
-  CHECK(global(L, "fails") - global(L, "holds") <= 0.05);
-  CHECK(global(L, "trials") >= 4);
-  CHECK(global(L, "first_srf") == 1);
-  lua_getglobal(L, "first_converged");
-  CHECK(lua_toboolean(L, -1));
-  lua_getglobal(L, "second_converged");
-  CHECK_FALSE(lua_toboolean(L, -1));
+  CHECK(global("fos") == Approx(1.4).epsilon(0.05));
+  CHECK(global("fos") == Approx(global("lem")).epsilon(0.05));  // Bishop: 1.378 on this model
+  CHECK(global("fails") - global("holds") <= 0.05);
+  CHECK(global("trials") >= 4);
+  CHECK(global("first_srf") == 1);
+  CHECK(f.truth("first_converged"));
+  CHECK_FALSE(f.truth("second_converged"));
   lua_getglobal(L, "first_ended");
   CHECK(std::string(lua_tostring(L, -1)) == "equilibrium");
-  lua_getglobal(L, "complete");
-  CHECK(lua_toboolean(L, -1));
-  lua_pop(L, 4);
+  lua_pop(L, 1);
+  CHECK(f.truth("complete"));
   // The model itself never ran: the trials ran on copies.
-  CHECK(global(L, "time_after") == 0);
-  CHECK(global(L, "steps_after") == 0);
+  CHECK(global("time_after") == 0);
+  CHECK(global("steps_after") == 0);
   lua_getglobal(L, "file");
   REQUIRE(lua_isstring(L, -1));
   const std::string file = lua_tostring(L, -1);
