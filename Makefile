@@ -12,7 +12,7 @@ CMAKE_ARGS ?=
 PACKAGES = g++ make cmake pkg-config libeigen3-dev catch2 liblua5.4-dev libreadline-dev libcli11-dev \
            libvtk9-dev gnuplot-nox
 
-.PHONY: all deps configure build run test bench clean
+.PHONY: all deps configure build run test sanitize bench clean
 
 all: build
 
@@ -31,6 +31,16 @@ run: build
 
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+	@$(MAKE) --no-print-directory sanitize
+
+# The program built with AddressSanitizer and UndefinedBehaviorSanitizer, over the fast tests that drive
+# it with scripts (label "sanitize": examples, console, hostile scripts and files). Only the program is
+# built there, not the unit-test binary, to keep CI short. Any report fails the test.
+SANITIZE_DIR ?= build-sanitize
+sanitize: deps
+	@cmake -S . -B $(SANITIZE_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEISMPM_SANITIZE=ON -DSEISMPM_BENCH=OFF >/dev/null
+	@cmake --build $(SANITIZE_DIR) -j $(JOBS) --target seismpm
+	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS) -L sanitize
 
 bench: build
 	./$(BUILD_DIR)/bench/seismpm_bench
