@@ -31,7 +31,7 @@ for i = 1, #y do
 end
 local worst, worst_ratio = 0, 0
 local out = mpm.out_dir("out/elastic_column")
-os.execute("mkdir -p '" .. out .. "'")
+m:output{ dir = out }   -- makes the directory, with the settled state for ParaView (particles.pvd)
 local csv = assert(io.open(out .. "/vertical_stress.csv", "w"))
 csv:write("depth (m),sigma_yy (Pa),exact (Pa)\n")
 for r, row in pairs(rows) do

@@ -41,7 +41,7 @@ struct TrailingOptions {
   std::vector<std::string> sets;
   std::string out;
   int threads = 0;
-  bool quiet = false;
+  bool quiet = false, sandbox = false;
   std::string error;
 };
 
@@ -75,6 +75,8 @@ TrailingOptions take_trailing_options(std::vector<std::string>& words) {
       }
     } else if (w == "--quiet") {
       o.quiet = true;
+    } else if (w == "--sandbox") {
+      o.sandbox = true;
     } else {
       kept.push_back(w);
     }
@@ -86,7 +88,7 @@ TrailingOptions take_trailing_options(std::vector<std::string>& words) {
 
 // What the command line asks for, options written after the script included.
 struct CommandLine {
-  bool interactive = false, quiet = false, version = false, api_doc = false;
+  bool interactive = false, quiet = false, sandbox = false, version = false, api_doc = false;
   std::vector<std::string> chunks, sets;
   int threads = 0;
   std::string out;
@@ -101,7 +103,10 @@ int parse_command_line(int argc, char** argv, CommandLine& cl) {
       "seismpm: Material Point Method for seismic slope failure and landslide run-out.\n"
       "  seismpm                   interactive console\n"
       "  seismpm FILE.lua [args]   run a scenario (`arg` holds the extra words; --set, --out,\n"
-      "                            --threads, --quiet after FILE are options too)\n"
+      "                            --threads, --quiet, --sandbox after FILE are options too)\n"
+      "  seismpm --sandbox FILE.lua  run a scenario someone sent you: no shell, native code or\n"
+      "                            debug library, its own files only in its folder, the working\n"
+      "                            directory (read) and the output directory (write)\n"
       "  seismpm -i FILE.lua       run, then stay in the console\n"
       "  seismpm -e 'lua code'     run a chunk\n"
       "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy)",
@@ -112,6 +117,10 @@ int parse_command_line(int argc, char** argv, CommandLine& cl) {
   app.add_option("--threads", cl.threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
   app.add_option("--out", cl.out, "Output directory in place of the script's default (mpm.out_dir)");
   app.add_flag("--quiet", cl.quiet, "No progress display");
+  app.add_flag("--sandbox", cl.sandbox,
+               "Run untrusted scripts: no os.execute, io.popen, package.loadlib, C modules or debug library; "
+               "files read only under the script's folder, the working directory and the output directory, "
+               "written only under the output directory (--out, or an m:output dir inside the working directory)");
   app.add_option("--set", cl.sets, "Scenario parameter name=value, read with mpm.param(name, default) (may repeat)")
       ->allow_extra_args(false);
   app.add_flag("--version", cl.version, "Print the version and exit");
@@ -136,6 +145,7 @@ int parse_command_line(int argc, char** argv, CommandLine& cl) {
   if (!trailing.out.empty()) cl.out = trailing.out;
   if (trailing.threads > 0) cl.threads = trailing.threads;
   cl.quiet = cl.quiet || trailing.quiet;
+  cl.sandbox = cl.sandbox || trailing.sandbox;
   return -1;
 }
 
@@ -150,6 +160,7 @@ bool fill_session(const CommandLine& cl, seismpm::lua::Session& session) {
     session.params[s.substr(0, eq)] = s.substr(eq + 1);
   }
   session.out_dir = cl.out;
+  session.sandbox = cl.sandbox;
   session.progress = seismpm::Progress::detect(stderr, cl.quiet);
   return true;
 }

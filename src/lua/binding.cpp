@@ -82,6 +82,16 @@ void register_functions(lua_State* L, std::span<const Function> functions) {
   }
 }
 
+std::string dead_object_message(const char* type) {
+  return std::string(type) + " used after it was collected or closed (its __gc ran)";
+}
+
+void refuse_control_characters(const std::string& text, const std::string& what) {
+  for (const char c : text)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      throw Error(what + ": '" + text.substr(0, 40) + "' holds a control character (a line break, a tab, ...)");
+}
+
 std::string type_name(lua_State* L, int index) {
   if (luaL_getmetafield(L, index, "__name") == LUA_TSTRING) {  // raw
     std::string s = lua_tostring(L, -1);

@@ -65,10 +65,31 @@ void register_functions(lua_State* L, std::span<const Function> functions);
 template <class T>
 struct LuaType;
 
+// The block of a userdata: the object and whether it still lives. Its __gc destroys the object once
+// and marks it dead; the memory stays until Lua frees it, which may be much later (a finalizer of
+// another object can keep it reachable, and a script can call __gc by hand), so every access asks.
+template <class T>
+struct Userdata {
+  T object;
+  bool alive = true;
+};
+
+// The message for an object used after its __gc ran.
+std::string dead_object_message(const char* type);
+
+// __gc of T: destroys the object the first time, does nothing after; called by hand on a value that
+// is no T, a Lua error (raised with no C++ object alive).
 template <class T>
 int destroy(lua_State* L) {
-  static_cast<T*>(lua_touserdata(L, 1))->~T();
-  return 0;
+  if (auto* u = static_cast<Userdata<T>*>(luaL_testudata(L, 1, LuaType<T>::name))) {
+    if (u->alive) {
+      u->alive = false;
+      u->object.~T();
+    }
+    return 0;
+  }
+  const char* got = luaL_getmetafield(L, 1, "__name") == LUA_TSTRING ? lua_tostring(L, -1) : luaL_typename(L, 1);
+  return luaL_error(L, "%s:__gc: expects a %s, got %s", LuaType<T>::name, LuaType<T>::name, got);
 }
 
 // The metatable of T: __name, __gc, __tostring (a one-line summary), __index (its methods, empty).
@@ -93,24 +114,31 @@ void open_type(lua_State* L, std::span<const Function> functions) {
 
 template <class T>
 T& push_object(lua_State* L, T value) {
-  void* mem = lua_newuserdatauv(L, sizeof(T), 0);
-  T* obj = new (mem) T(std::move(value));
+  void* mem = lua_newuserdatauv(L, sizeof(Userdata<T>), 0);
+  auto* u = new (mem) Userdata<T>{std::move(value)};
   luaL_setmetatable(L, LuaType<T>::name);
-  return *obj;
+  return u->object;
 }
 
+// The T at `index`, or nullptr when the value is no T; throws Error when it is a T whose __gc ran.
 template <class T>
 T* test_object(lua_State* L, int index) {
-  return static_cast<T*>(luaL_testudata(L, index, LuaType<T>::name));  // compares metatables: raw
+  auto* u = static_cast<Userdata<T>*>(luaL_testudata(L, index, LuaType<T>::name));  // compares metatables: raw
+  if (!u) return nullptr;
+  if (!u->alive) throw Error(dead_object_message(LuaType<T>::name));
+  return &u->object;
 }
 
 // Lua's name for the type of the value at `index` ("number", "table", "model", ...).
 std::string type_name(lua_State* L, int index);
 
+// The T at `index`; `what` names the value in messages ("self" for the object a method is called on).
 template <class T>
 T& check_object(lua_State* L, int index, const std::string& what) {
-  if (T* obj = test_object<T>(L, index)) return *obj;
-  throw Error(what + " must be a " + LuaType<T>::name + ", got " + type_name(L, index));
+  auto* u = static_cast<Userdata<T>*>(luaL_testudata(L, index, LuaType<T>::name));
+  if (!u) throw Error(what + " must be a " + LuaType<T>::name + ", got " + type_name(L, index));
+  if (!u->alive) throw Error((what == "self" ? "" : what + ": ") + dead_object_message(LuaType<T>::name));
+  return u->object;
 }
 
 // The object a method is called on (m:run: m).
@@ -128,6 +156,10 @@ T& object_argument(const Args& a, const char* key) {
   lua_pop(L, 1);  // the argument table keeps the userdata alive
   return obj;
 }
+
+// Throws when `text` holds a control character (a line break would end a line of a gnuplot script and
+// start a command of the script's choosing); `what` names it.
+void refuse_control_characters(const std::string& text, const std::string& what);
 
 // A particle field name at `index` (body:field, probe:get); the error lists the names.
 Field field_argument(lua_State* L, int index);

@@ -4,6 +4,7 @@
 #include "api_docs.hpp"
 #include "binding.hpp"
 #include "core/particle_fields.hpp"
+#include "lua_function.hpp"
 #include "objects.hpp"
 
 namespace seismpm::lua {
@@ -70,6 +71,7 @@ int body_field(lua_State* L) {
 
 // Sets each particle's velocity from function(x, y) return vx, vy end at stack index 2 (protected call).
 void set_velocity_from_function(lua_State* L, Particles<2>& p, const std::vector<std::size_t>& list) {
+  const EvaluationScope scope(L);  // the function may not change the particles under this loop
   for (std::size_t k : list) {
     lua_pushvalue(L, 2);
     lua_pushnumber(L, p.x[k][0]);
@@ -91,7 +93,8 @@ void set_velocity_from_function(lua_State* L, Particles<2>& p, const std::vector
 // body:set_velocity{vx, vy} or body:set_velocity(function(x, y) return vx, vy end); for a rigid
 // body {vx, vy} with numbers or histories replaces the velocity it follows.
 int body_set_velocity(lua_State* L) {
-  auto& b = self<BodyObject>(L);
+  const BodyObject b = self<BodyObject>(L);  // a copy: the velocity function may destroy the userdata
+  refuse_inside_a_step(L, "set velocities");
   if (b.handle->model.bodies()[b.body].rigid) {
     b.handle->model.set_rigid_velocity(b.body, rigid_velocity(L, 2, "the velocity"));
     return 0;
@@ -136,8 +139,9 @@ const Function kBody[] = {
      &guarded<body_set_velocity>,
      "b:set_velocity{vx, vy} | b:set_velocity(function(x, y) return vx, vy end)",
      {},
-     "Sets the particles' velocity (m/s), uniform or as a function of position. For a rigid body: {vx, vy} with "
-     "numbers or histories replaces the velocity it follows from the next step on.",
+     "Sets the particles' velocity (m/s), uniform or as a function of position (which may read models, not "
+     "change one). For a rigid body: {vx, vy} with numbers or histories replaces the velocity it follows from the "
+     "next step on.",
      "bar:set_velocity(function(x, y) return 0.1 * math.sin(math.pi * x / 50), 0 end)"},
     {"body:reaction",
      &guarded<body_reaction>,

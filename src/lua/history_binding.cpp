@@ -11,6 +11,7 @@
 #include "io/ground_motion.hpp"
 #include "lua_function.hpp"
 #include "objects.hpp"
+#include "sandbox.hpp"
 #include "session.hpp"
 
 namespace seismpm::lua {
@@ -46,9 +47,9 @@ int history_tostring(lua_State* L) {
 }
 
 int history_at(lua_State* L) {
-  const auto& h = self<HistoryObject>(L);
+  const auto history = self<HistoryObject>(L).history;  // held: its function may destroy the userdata
   if (!lua_isnumber(L, 2)) throw Error("expects a time t (s), got " + type_name(L, 2));
-  lua_pushnumber(L, h.history->at(lua_tonumber(L, 2)));
+  lua_pushnumber(L, history->at(lua_tonumber(L, 2)));
   return 1;
 }
 
@@ -70,6 +71,7 @@ int history_table(lua_State* L) {
 int history_csv(lua_State* L) {
   const Args a(L, 1, kCsvKeys);
   const std::string file = data_path(L, a.string("file"));
+  check_readable(L, file, "key 'file'");
   const double scale = a.number("scale"), shift = a.number("shift");
   auto c = read_csv_columns(file, {a.string("time"), a.string("value")});
   for (std::size_t k = 1; k < c.columns[0].size(); ++k)
@@ -113,6 +115,7 @@ int history_write_csv(lua_State* L) {
   if (lua_type(L, 2) != LUA_TSTRING)
     throw Error("expects a file name (a string)");  // before lua_tostring converts numbers
   const char* file = lua_tostring(L, 2);
+  check_writable(L, file, "");
   std::ostringstream os;
   os.precision(10);
   os << "t,value\n";
@@ -139,6 +142,7 @@ std::vector<double> record_values(const AccelerationRecord& record, bool velocit
 int history_at2(lua_State* L) {
   const Args a(L, 1, kAt2Keys);
   const std::string file = data_path(L, a.string("file"));
+  check_readable(L, file, "key 'file'");
   const bool is_at2 =
       file.size() > 4 && (file.substr(file.size() - 4) == ".AT2" || file.substr(file.size() - 4) == ".at2");
   const std::string format = a.choice("format", is_at2 ? "at2" : "columns");
@@ -180,7 +184,8 @@ const Function kHistory[] = {
      "mpm.history.fn(function(t) return value end)",
      {},
      "A history computed by a Lua function of time (s), called when the history is read (protected: an error, a "
-     "yield or a value that is not a number stops the call with an error naming t).",
+     "yield or a value that is not a number stops the call with an error naming t). A step reads it halfway "
+     "through: the function may read models, but changing or stepping one is an error.",
      "local vx = mpm.history.fn(function(t) return 0.1 * math.sin(2 * math.pi * 3 * t) end)"},
     {"mpm.history.at2", &guarded<history_at2>, nullptr, kAt2Keys,
      "A ground-motion record: PEER NGA .AT2 (acceleration in g) or a two-column time, acceleration file (comma or "

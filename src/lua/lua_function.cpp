@@ -31,6 +31,15 @@ std::shared_ptr<StateLife> life_of(lua_State* L) {
   return token->life;
 }
 
+// Releases the references that dead holders queued; L is a thread running a C function (room for two
+// values is guaranteed there).
+void release_queued(lua_State* L, StateLife& life) {
+  while (!life.released.empty()) {
+    luaL_unref(L, LUA_REGISTRYINDEX, life.released.back());
+    life.released.pop_back();
+  }
+}
+
 std::string error_text(lua_State* L) {
   return lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(an error object that is not a string)";
 }
@@ -42,7 +51,9 @@ void open_state_life(lua_State* L) {
   lua_State* main = lua_tothread(L, -1);
   lua_pop(L, 1);
   void* mem = lua_newuserdatauv(L, sizeof(LifeToken), 0);
-  new (mem) LifeToken{std::make_shared<StateLife>(StateLife{main})};
+  auto life = std::make_shared<StateLife>();
+  life->main = main;
+  new (mem) LifeToken{std::move(life)};
   lua_createtable(L, 0, 1);
   lua_pushcfunction(L, close_life);
   lua_setfield(L, -2, "__gc");
@@ -52,13 +63,26 @@ void open_state_life(lua_State* L) {
   lua_rawset(L, LUA_REGISTRYINDEX);
 }
 
+EvaluationScope::EvaluationScope(lua_State* L) : EvaluationScope(life_of(L)) {}
+
+EvaluationScope::EvaluationScope(std::shared_ptr<StateLife> life) : life_(std::move(life)) { ++life_->evaluations; }
+
+EvaluationScope::~EvaluationScope() { --life_->evaluations; }
+
+bool inside_a_value_function(lua_State* L) { return life_of(L)->evaluations > 0; }
+
 LuaFunction::LuaFunction(lua_State* L, int index) : life_(life_of(L)) {
+  release_queued(L, *life_);
   lua_pushvalue(L, index);
   ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
 }
 
 LuaFunction::~LuaFunction() {
-  if (lua_State* L = life_->main) luaL_unref(L, LUA_REGISTRYINDEX, ref_);
+  if (!life_->main || ref_ == LUA_NOREF || ref_ == LUA_REFNIL) return;
+  try {
+    life_->released.push_back(ref_);
+  } catch (const std::bad_alloc&) {  // the reference stays until lua_close: a leak, not a crash
+  }
 }
 
 double LuaFunction::operator()(double t) const {
@@ -66,6 +90,8 @@ double LuaFunction::operator()(double t) const {
   if (!L) throw Error("the Lua state of this function is closed");
   // The main thread may be waiting in coroutine.resume (a coroutine asks): its stack is free above the top.
   if (!lua_checkstack(L, 3)) throw Error("no room on the Lua stack to call the function (too deep a recursion?)");
+  release_queued(L, *life_);
+  const EvaluationScope scope(life_);
   const int top = lua_gettop(L);
   lua_rawgeti(L, LUA_REGISTRYINDEX, ref_);
   lua_pushnumber(L, t);

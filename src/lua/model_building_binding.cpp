@@ -146,6 +146,7 @@ void check_regions(const ModelHandle& h, std::vector<MaterialRegion>& regions, c
 int model_body(lua_State* L) {
   const auto handle = self<ModelObject>(L).handle;
   ModelHandle& h = *handle;
+  refuse_building(L, h, "add a body");
   const Args a(L, 2, kBodyKeys);
   const std::string name = body_name_argument(a, h, "body");
   if (!a.has("material") && !a.has("regions"))
@@ -166,6 +167,7 @@ int model_body(lua_State* L) {
 int model_rigid(lua_State* L) {
   const auto handle = self<ModelObject>(L).handle;
   ModelHandle& h = *handle;
+  refuse_building(L, h, "add a rigid body");
   const Args a(L, 2, kRigidKeys);
   const std::string name = body_name_argument(a, h, "rigid");
   const int ppc = a.integer("ppc");
@@ -199,6 +201,7 @@ std::array<int, 2> body_pair(const Args& a, const std::shared_ptr<ModelHandle>& 
 // m:contact{ body_a, body_b, friction = mu }
 int model_contact(lua_State* L) {
   const auto handle = self<ModelObject>(L).handle;
+  refuse_building(L, *handle, "declare a contact");
   const Args a(L, 2, kContactKeys);
   const auto body = body_pair(a, handle, "m:contact{ body_a, body_b, friction = mu } (bodies in contact)");
   handle->model.add_contact(body[0], body[1],
@@ -209,6 +212,7 @@ int model_contact(lua_State* L) {
 // m:set_friction{ body_a, body_b, friction = mu }
 int model_set_friction(lua_State* L) {
   const auto handle = self<ModelObject>(L).handle;
+  refuse_inside_a_step(L, "change a friction");
   const Args a(L, 2, kContactKeys);
   const auto body = body_pair(a, handle, "m:set_friction{ body_a, body_b, friction = mu }");
   handle->model.set_contact_friction(body[0], body[1], a.number("friction"));
@@ -217,6 +221,7 @@ int model_set_friction(lua_State* L) {
 
 int model_fix(lua_State* L) {
   ModelHandle& h = *self<ModelObject>(L).handle;
+  refuse_building(L, h, "fix an edge");
   const Args a(L, 2, kFixKeys);
   h.model.grid().fix(parse_side(a.choice("side"), 2), parse_dof(a.choice("dof"), 2));
   return 0;
@@ -224,12 +229,15 @@ int model_fix(lua_State* L) {
 
 int model_probe(lua_State* L) {
   const auto handle = self<ModelObject>(L).handle;
+  refuse_building(L, *handle, "add a probe");
   const Args a(L, 2, kProbeKeys);
   Simulation<2>& sim = handle->simulation;
   const std::string name = a.string("name", "probe" + std::to_string(sim.probes().size() + 1));
   for (const auto& p : sim.probes())
     if (std::string(p->name()) == name) throw Error("key 'name': a probe called '" + name + "' exists already");
-  const int body = object_argument<BodyObject>(a, "body").body;
+  const auto& of = object_argument<BodyObject>(a, "body");
+  if (of.handle != handle) throw Error("key 'body' belongs to another model");
+  const int body = of.body;
   const Vec<2> at = a.point("at");
   // The particle of the body nearest to `at`.
   const auto& p = handle->model.particles();

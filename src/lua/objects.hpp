@@ -126,9 +126,19 @@ struct PeriodicCall {
   int function = LUA_NOREF;  // a registry reference to the function
 };
 
-// Throws when a run is stepping (its call tried to `what`: "step the model", "start a phase"); a
-// phase asks before it changes its state.
-void refuse_inside_a_run(const ModelHandle& h, const char* what);
+// What a script may do to a model depends on where it runs (model_guard.cpp). A value function
+// (lua_function.hpp: a history function runs inside a step, the kernel halfway through it) may read,
+// never change or step a model. A run's
+// call runs between steps: it may change what a step reads afresh (friction, velocities) and write
+// files, but not rebuild the model (bodies, contacts, fixities, probes, output) nor step it.
+//
+// Throws when `what` ("step the model", "start a phase") would step the model: inside a value
+// function or a run (a phase asks before it changes its state).
+void refuse_inside_a_run(lua_State* L, const ModelHandle& h, const char* what);
+// Throws when `what` ("add a body") would rebuild the model: inside a value function or a run.
+void refuse_building(lua_State* L, const ModelHandle& h, const char* what);
+// Throws when `what` ("change a friction") would change a model a step is using: inside a value function.
+void refuse_inside_a_step(lua_State* L, const char* what);
 
 // The simulation, ready for a run from this session: its progress display and Ctrl-C flag (cleared
 // now). run_in_session(L, h, run) calls run(h.simulation) so; an interrupted run leaves the Lua hook

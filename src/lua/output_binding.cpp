@@ -7,6 +7,7 @@
 #include "io/atomic_file.hpp"
 #include "io/probe_plot.hpp"
 #include "objects.hpp"
+#include "sandbox.hpp"
 #include "session.hpp"
 
 namespace seismpm::lua {
@@ -34,11 +35,13 @@ ModelHandle& handle_of(lua_State* L) { return *self<ModelObject>(L).handle; }
 // m:output{ dir, every, fields, grid, probe_every, at_run_end }
 int model_output(lua_State* L) {
   ModelHandle& h = handle_of(L);
+  refuse_building(L, h, "set the output");
   const Args a(L, 2, kOutputKeys);
   OutputSettings s;
   // A dir given is used as it is; without one, the --out directory (Session::output_dir), if any.
   const Session& command_line = session(L);
   s.dir = a.has("dir") || command_line.out_dir.empty() ? a.string("dir") : command_line.output_dir("");
+  refuse_control_characters(s.dir, "key 'dir'");  // m:plot hands it to gnuplot
   s.every = a.number("every");
   s.grid = a.boolean("grid");
   const bool at_run_end = a.boolean("at_run_end");
@@ -51,12 +54,14 @@ int model_output(lua_State* L) {
   }
   if (auto pe = a.optional_number("probe_every")) h.simulation.set_probe_every(*pe);
   h.simulation.set_output(s, at_run_end);  // writes the state as it is now
+  allow_writes_under(L, s.dir);            // the script's own files go there too
   return 0;
 }
 
 // m:write(): the current state on file now (when it is not already).
 int model_write(lua_State* L) {
   ModelHandle& h = handle_of(L);
+  refuse_inside_a_step(L, "write the model's files");
   if (!h.simulation.output()) throw Error("no output directory yet: call m:output{ dir = ... } first");
   h.simulation.write();
   return 0;
@@ -65,6 +70,7 @@ int model_write(lua_State* L) {
 // m:plot{ quantities = {"ux", "uy"} } -> list of PNG files
 int model_plot(lua_State* L) {
   ModelHandle& h = handle_of(L);
+  refuse_inside_a_step(L, "plot the probes");
   if (lua_isnoneornil(L, 2)) {  // m:plot(): every default
     lua_settop(L, 1);
     lua_newtable(L);

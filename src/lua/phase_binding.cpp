@@ -45,6 +45,10 @@ const Key kGravityKeys[] = {
 
 ModelHandle& handle_of(lua_State* L) { return *self<ModelObject>(L).handle; }
 
+// The model a run steps, held by the run itself: Lua code that it calls (a history function, the
+// run's call) may destroy the userdata by hand (its __gc) while the run goes on.
+std::shared_ptr<ModelHandle> held_handle(lua_State* L) { return self<ModelObject>(L).handle; }
+
 // Calls the run's function with the model (stack index 1); true when it asks the run to stop.
 bool invoke(lua_State* L, int function, double t) {
   lua_rawgeti(L, LUA_REGISTRYINDEX, function);
@@ -62,23 +66,25 @@ bool invoke(lua_State* L, int function, double t) {
 }
 
 int model_step(lua_State* L) {
-  ModelHandle& h = handle_of(L);
+  const auto held = held_handle(L);
+  ModelHandle& h = *held;
   lua_Integer n = 1;
   if (!lua_isnoneornil(L, 2)) {
     if (!lua_isinteger(L, 2) || lua_tointeger(L, 2) < 1) throw Error("the number of steps must be a whole number >= 1");
     n = lua_tointeger(L, 2);
   }
-  refuse_inside_a_run(h, "step the model");
+  refuse_inside_a_run(L, h, "step the model");
   run_in_session(L, h, [&](Simulation<2>& sim) { sim.step(n); });
   return 0;
 }
 
 int model_run(lua_State* L) {
-  ModelHandle& h = handle_of(L);
+  const auto held = held_handle(L);
+  ModelHandle& h = *held;
   const Args a(L, 2, kRunKeys);
   const double duration = a.number("duration");
   const PeriodicCall call(a);  // read first: a bad call leaves the damping as it was
-  refuse_inside_a_run(h, "step the model");
+  refuse_inside_a_run(L, h, "step the model");
   if (const auto damping = a.optional_number("damping")) h.simulation.set_damping(*damping);
   run_in_session(L, h, [&](Simulation<2>& sim) { sim.run(duration, call.run_call(L, h.model)); });
   return 0;
@@ -98,7 +104,8 @@ void push_result(lua_State* L, const GravityPhaseResult& r) {
 
 // m:gravity_phase{ damping = 0.7, tolerance = 0.005, max_time = 10, k0 } -> { time, steps, unbalanced, kinetic }
 int model_gravity_phase(lua_State* L) {
-  ModelHandle& h = handle_of(L);
+  const auto held = held_handle(L);
+  ModelHandle& h = *held;
   const Args a(L, 2, kGravityKeys);
   GravityPhaseSettings g;
   g.damping = a.number("damping");
@@ -106,7 +113,7 @@ int model_gravity_phase(lua_State* L) {
   g.max_time = a.number("max_time");
   if (auto k0 = a.optional_number("k0")) g.k0 = *k0;
   if (h.model.particles().size() == 0) throw Error("the model has no particles");
-  refuse_inside_a_run(h, "start a phase");
+  refuse_inside_a_run(L, h, "start a phase");
   const GravityPhaseResult r = run_in_session(L, h, [&](Simulation<2>& sim) { return sim.gravity_phase(g); });
   push_result(L, r);
   return 1;
@@ -114,11 +121,12 @@ int model_gravity_phase(lua_State* L) {
 
 // m:dynamic_phase{ duration, damping = 0, every, call }
 int model_dynamic_phase(lua_State* L) {
-  ModelHandle& h = handle_of(L);
+  const auto held = held_handle(L);
+  ModelHandle& h = *held;
   const Args a(L, 2, kDynamicKeys);
   const double duration = a.number("duration"), damping = a.number("damping");
   if (h.model.particles().size() == 0) throw Error("the model has no particles");
-  refuse_inside_a_run(h, "start a phase");
+  refuse_inside_a_run(L, h, "start a phase");
   const PeriodicCall call(a);
   run_in_session(L, h, [&](Simulation<2>& sim) { sim.dynamic_phase(duration, damping, call.run_call(L, h.model)); });
   return 0;
@@ -139,8 +147,9 @@ const Function kPhases[] = {
     {"model:run", &guarded<model_run>, nullptr, kRunKeys,
      "Runs for duration (s) more in the current phase, with a progress display. call(m) runs every `every` seconds "
      "of simulated time (hit exactly) and at the end of the run, between steps: to sample or print something, or to "
-     "end the run early by returning true; it may not step the model itself. Ctrl-C stops at the next step "
-     "boundary with the model intact.",
+     "end the run early by returning true, or to change a friction (m:set_friction) or a velocity "
+     "(b:set_velocity); it may not step the model itself, nor add bodies, contacts, fixities, probes or an "
+     "output. Ctrl-C stops at the next step boundary with the model intact.",
      "m:run{ duration = 60, every = 1, call = function(m) return m:energy().kinetic < 1 end }"},
     {"model:gravity_phase", &guarded<model_gravity_phase>, nullptr, kGravityKeys,
      "The initial-stress phase: self-weight with rigid bodies at rest and local damping (F_damp = -damping "
@@ -195,12 +204,6 @@ PeriodicCall::~PeriodicCall() {
 RunCall PeriodicCall::run_call(lua_State* L, const Model<2>& model) const {
   if (every <= 0) return {};
   return {every, [L, f = function, &model] { return invoke(L, f, model.time()); }};
-}
-
-void refuse_inside_a_run(const ModelHandle& h, const char* what) {
-  if (h.simulation.running())
-    throw Error(std::string("a run's call may not ") + what +
-                " (m:run, m:step or a phase): return true from it to end the run");
 }
 
 void prepare_run(lua_State* L, ModelHandle& h) {

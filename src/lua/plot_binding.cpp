@@ -3,6 +3,7 @@
 #include "binding.hpp"
 #include "io/csv_plot.hpp"
 #include "objects.hpp"
+#include "sandbox.hpp"
 
 namespace seismpm::lua {
 
@@ -33,6 +34,13 @@ int plot(lua_State* L) {
   p.xlabel = a.string("xlabel");
   p.ylabel = a.string("ylabel");
   p.color = a.string("color");
+  const std::pair<const char*, const std::string*> texts[] = {
+      {"file", &p.csv},      {"x", &p.x},           {"png", &p.png},    {"title", &p.title},
+      {"xlabel", &p.xlabel}, {"ylabel", &p.ylabel}, {"color", &p.color}};
+  for (const auto& [key, text] : texts) refuse_control_characters(*text, std::string("key '") + key + "'");
+  for (const auto& y : p.y) refuse_control_characters(y, "key 'y'");
+  check_readable(L, p.csv, "key 'file'");
+  check_writable(L, p.png, "key 'png'");
   plot_csv(p);
   lua_pushstring(L, p.png.c_str());
   return 1;

@@ -9,6 +9,7 @@
 #include "binding.hpp"
 #include "lua_function.hpp"
 #include "objects.hpp"
+#include "sandbox.hpp"
 
 namespace seismpm::lua {
 
@@ -59,6 +60,7 @@ int out_dir(lua_State* L) {
     lua_settop(L, 1);  // the default as given, whatever its type (nil when none)
   else
     lua_pushstring(L, s.output_dir("").c_str());
+  if (lua_type(L, -1) == LUA_TSTRING) allow_writes_under(L, lua_tostring(L, -1));  // the script's output goes there
   return 1;
 }
 
@@ -118,6 +120,7 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   open_state_life(L_);  // first: see lua_function.hpp
   lua_pushlightuserdata(L_, &session_);
   lua_setfield(L_, LUA_REGISTRYINDEX, kSessionKey);
+  install_text_only_loading(L_);
 
   lua_newtable(L_);
   lua_setglobal(L_, "mpm");
@@ -150,6 +153,7 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   lua_pop(L_, 1);
   if (!run_string("require 'seismpm'", "=(seismpm library)"))
     std::fprintf(stderr, "seismpm: the Lua library lua/seismpm.lua was not loaded (searched: %s)\n", path.c_str());
+  if (session_.sandbox) install_sandbox(L_);  // after the library: it is ours, loaded from the library dirs
 }
 
 Runtime::~Runtime() { lua_close(L_); }
@@ -180,7 +184,7 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
   lua_pop(L_, 2);
   std::error_code ec;
   session_.script_dir = std::filesystem::absolute(file, ec).parent_path().string();
-  if (luaL_loadfile(L_, file.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {
+  if (luaL_loadfilex(L_, file.c_str(), "t") != LUA_OK || call(0, 0) != LUA_OK) {
     std::fprintf(stderr, "seismpm: %s\n", lua_tostring(L_, -1));
     lua_pop(L_, 1);
     return false;
@@ -189,7 +193,7 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
 }
 
 bool Runtime::execute(const std::string& code, const std::string& name, std::string& error) {
-  if (luaL_loadbuffer(L_, code.data(), code.size(), name.c_str()) != LUA_OK || call(0, 0) != LUA_OK) {
+  if (luaL_loadbufferx(L_, code.data(), code.size(), name.c_str(), "t") != LUA_OK || call(0, 0) != LUA_OK) {
     error = lua_tostring(L_, -1) ? lua_tostring(L_, -1) : "(error object is not a string)";
     lua_pop(L_, 1);
     return false;

@@ -62,10 +62,10 @@ std::string Runtime::shown(int index) {
 Runtime::Entry Runtime::run_entry(const std::string& entry, std::string& output) {
   lua_settop(L_, 0);
   const std::string expr = "return " + entry;
-  int status = luaL_loadbuffer(L_, expr.data(), expr.size(), "=stdin");
+  int status = luaL_loadbufferx(L_, expr.data(), expr.size(), "=stdin", "t");
   if (status != LUA_OK) {
     lua_pop(L_, 1);
-    status = luaL_loadbuffer(L_, entry.data(), entry.size(), "=stdin");
+    status = luaL_loadbufferx(L_, entry.data(), entry.size(), "=stdin", "t");
     if (incomplete(L_, status)) {
       lua_settop(L_, 0);
       return Entry::Incomplete;

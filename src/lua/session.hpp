@@ -1,10 +1,11 @@
 // Settings of one Lua session that the command line gives (threads, --set parameters, --out,
-// --quiet) and the Ctrl-C flag that stops a run at the next step boundary.
+// --quiet, --sandbox) and the Ctrl-C flag that stops a run at the next step boundary.
 #pragma once
 
 #include <atomic>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "io/progress.hpp"
 
@@ -21,6 +22,10 @@ struct Session {
   Progress::Mode progress = Progress::Mode::Log;
   std::atomic<bool> interrupted{false};
   std::string script_dir;  // directory of the script being run, for its data files
+  // --sandbox (sandbox.hpp): no shell, native code or debug library; the script's own files only in the
+  // folders the user gave it. writable_dirs: the output directories the script named that qualify.
+  bool sandbox = false;
+  std::vector<std::string> writable_dirs;
 };
 
 // A data file named in a script: as given when it exists (or is absolute), otherwise next to the script.

@@ -39,8 +39,6 @@ const Key kStrengthReductionKeys[] = {
                  "strength_reduction_mechanism.vtu into the output directory (m:output's, else --out)"),
 };
 
-ModelHandle& handle_of(lua_State* L) { return *self<ModelObject>(L).handle; }
-
 void read_bracket(lua_State* L, const Args& a, StrengthReductionSettings& s) {
   if (!a.has("srf")) return;
   a.push("srf");
@@ -113,7 +111,8 @@ void push_result(lua_State* L, const StrengthReductionResult& r) {
 //                       max_displacement, write = false } -> { fos, holds, fails, max_displacement, criterion,
 //                       trials = {...}, file }
 int model_strength_reduction(lua_State* L) {
-  ModelHandle& h = handle_of(L);
+  const auto held = self<ModelObject>(L).handle;  // held by the call: see phase_binding.cpp
+  ModelHandle& h = *held;
   const Args a(L, 2, kStrengthReductionKeys);
   StrengthReductionSettings s;
   read_bracket(L, a, s);
@@ -123,7 +122,7 @@ int model_strength_reduction(lua_State* L) {
   s.max_time = a.number("max_time");
   if (const auto limit = a.optional_number("max_displacement")) s.max_displacement = *limit;
   if (a.boolean("write")) s.mechanism_file = output_directory(L, h) + "/strength_reduction_mechanism.vtu";
-  refuse_inside_a_run(h, "run a strength reduction");
+  refuse_inside_a_run(L, h, "run a strength reduction");
   Session& session_now = session(L);
   s.progress = session_now.progress;
   s.interrupt = &session_now.interrupted;

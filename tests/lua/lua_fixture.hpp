@@ -13,10 +13,15 @@ struct LuaFixture {
   lua::Session session;
   lua::Runtime runtime;
 
-  LuaFixture() : runtime(init(session), {SEISMPM_SOURCE_LUA_DIR}) {}
+  // `sandbox`: as --sandbox, with the script's folder and the output directory given (else none).
+  explicit LuaFixture(bool sandbox = false, const std::string& script_dir = "", const std::string& out_dir = "")
+      : runtime(init(session, sandbox, script_dir, out_dir), {SEISMPM_SOURCE_LUA_DIR}) {}
 
-  static lua::Session& init(lua::Session& s) {
+  static lua::Session& init(lua::Session& s, bool sandbox, const std::string& script_dir, const std::string& out_dir) {
     s.progress = Progress::Mode::Quiet;
+    s.sandbox = sandbox;
+    s.script_dir = script_dir;
+    s.out_dir = out_dir;
     return s;
   }
 
