@@ -50,5 +50,5 @@ m:rigid{ name = 'r', shape = mpm.shape.rectangle{ 0.5, 0.5, 0.7, 0.7 }, velocity
 m:body{ name = 'a', shape = mpm.shape.rectangle{ 0.2, 0.2, 0.4, 0.4 }, material = soil }
 m:run{ duration = 0.01 }
 error('ok-run')"
-expect bytecode_script 'binary|bytecode|text' "local f = load(string.dump(function() return 1 end))"
+expect bytecode_load "binary chunk" "local f = assert(load(string.dump(function() return 1 end)))"
 exit $failures
