@@ -31,15 +31,6 @@ std::shared_ptr<StateLife> life_of(lua_State* L) {
   return token->life;
 }
 
-// Releases the references that dead holders queued; L is a thread running a C function (room for two
-// values is guaranteed there).
-void release_queued(lua_State* L, StateLife& life) {
-  while (!life.released.empty()) {
-    luaL_unref(L, LUA_REGISTRYINDEX, life.released.back());
-    life.released.pop_back();
-  }
-}
-
 std::string error_text(lua_State* L) {
   return lua_type(L, -1) == LUA_TSTRING ? lua_tostring(L, -1) : "(an error object that is not a string)";
 }
@@ -72,17 +63,12 @@ EvaluationScope::~EvaluationScope() { --life_->evaluations; }
 bool inside_a_value_function(lua_State* L) { return life_of(L)->evaluations > 0; }
 
 LuaFunction::LuaFunction(lua_State* L, int index) : life_(life_of(L)) {
-  release_queued(L, *life_);
   lua_pushvalue(L, index);
   ref_ = luaL_ref(L, LUA_REGISTRYINDEX);
 }
 
 LuaFunction::~LuaFunction() {
-  if (!life_->main || ref_ == LUA_NOREF || ref_ == LUA_REFNIL) return;
-  try {
-    life_->released.push_back(ref_);
-  } catch (const std::bad_alloc&) {  // the reference stays until lua_close: a leak, not a crash
-  }
+  if (lua_State* L = life_->main) luaL_unref(L, LUA_REGISTRYINDEX, ref_);
 }
 
 double LuaFunction::operator()(double t) const {
@@ -90,7 +76,6 @@ double LuaFunction::operator()(double t) const {
   if (!L) throw Error("the Lua state of this function is closed");
   // The main thread may be waiting in coroutine.resume (a coroutine asks): its stack is free above the top.
   if (!lua_checkstack(L, 3)) throw Error("no room on the Lua stack to call the function (too deep a recursion?)");
-  release_queued(L, *life_);
   const EvaluationScope scope(life_);
   const int top = lua_gettop(L);
   lua_rawgeti(L, LUA_REGISTRYINDEX, ref_);

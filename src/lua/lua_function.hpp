@@ -1,15 +1,13 @@
 // A Lua function that a C++ object keeps (the function of mpm.history.fn, held by a rigid body's
 // velocity): a registry reference, called through the state's main thread so that it never points to
-// the coroutine that created it (which may be collected). A holder may die anywhere, a finalizer run
-// by the collector on some coroutine included, so its reference is not released there: it is queued,
-// and the next function made or called releases it. A holder may outlive the Lua state (a C++ object
-// destroyed after lua_close): then a call throws, and lua_close has freed the registry already.
+// the coroutine that created it (which may be collected), and released when the holder dies. A holder
+// may outlive the Lua state (a C++ object destroyed after lua_close): then a call throws and the
+// release is skipped, as lua_close has freed the registry already.
 #pragma once
 
 #include <lua.hpp>
 
 #include <memory>
-#include <vector>
 
 namespace seismpm::lua {
 
@@ -17,7 +15,6 @@ namespace seismpm::lua {
 struct StateLife {
   lua_State* main = nullptr;  // the main thread; nullptr once the state is closed
   int evaluations = 0;        // value functions being evaluated now (EvaluationScope)
-  std::vector<int> released;  // references of dead holders, to release from a safe place
 };
 
 // Creates the state's life token (a registry userdata whose finalizer, run by lua_close, clears it).

@@ -201,8 +201,10 @@ int blocked_debug_field(lua_State* L) {
 int sandboxed_getinfo(lua_State* L) {
   const bool of_thread = lua_type(L, 1) == LUA_TTHREAD;
   const int what = of_thread ? 3 : 2;
-  if (!of_thread && lua_isinteger(L, 1)) {  // a level of this thread: this function is one more
-    lua_pushinteger(L, lua_tointeger(L, 1) + 1);
+  int is_level = 0;
+  const lua_Integer level = of_thread ? 0 : lua_tointegerx(L, 1, &is_level);
+  if (is_level && lua_type(L, 1) == LUA_TNUMBER) {  // a level of this thread: this function is one more
+    lua_pushinteger(L, level + 1);
     lua_replace(L, 1);
   }
   if (lua_isnoneornil(L, what)) {

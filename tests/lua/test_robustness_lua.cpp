@@ -287,7 +287,7 @@ TEST_CASE("bytecode is never loaded: load, loadfile, dofile, require and the mai
 
 // ---------------------------------------------------------------- --sandbox
 
-TEST_CASE("--sandbox: the shell, native code and the debug library raise errors naming them", "[robustness][sandbox]") {
+TEST_CASE("sandbox: the shell, native code and the debug library raise errors naming them", "[robustness][sandbox]") {
   const auto c =
       GENERATE(as<std::string>{}, "os.execute('true')", "os.execute()", "io.popen('ls')",
                "package.loadlib('libc.so.6', '*')", "os.tmpname()", "debug.sethook()", "debug.getlocal(1, 1)",
@@ -301,14 +301,14 @@ TEST_CASE("--sandbox: the shell, native code and the debug library raise errors 
   CHECK(open.error_of("assert(type(" + name + ") == 'function')") == "");
 }
 
-TEST_CASE("--sandbox: no C modules, and what scripts use debug for stays", "[robustness][sandbox]") {
+TEST_CASE("sandbox: no C modules, and what scripts use debug for stays", "[robustness][sandbox]") {
   LuaFixture f(true);
   CHECK(f.error_of("assert(#package.searchers == 2)") == "");
   const std::string error = f.error_of("require 'socket'");
   CHECK_THAT(error, Contains("module 'socket' not found"));
   CHECK_THAT(error, !Contains(".so'"));
   CHECK(f.error_of(R"(
-    assert(debug.getinfo(1, "S").source == "=test")
+    assert(debug.getinfo(1, "S").source == "=test" and debug.getinfo(1.0, "S").source == "=test")
     assert(debug.getinfo(1).currentline == 3)
     assert(type(debug.traceback()) == "string")
     assert(package.loaded.debug == debug)
@@ -316,7 +316,7 @@ TEST_CASE("--sandbox: no C modules, and what scripts use debug for stays", "[rob
   )") == "");
 }
 
-TEST_CASE("--sandbox: files are read in the script's folder, the working directory and the output directory",
+TEST_CASE("sandbox: files are read in the script's folder, the working directory and the output directory",
           "[robustness][sandbox]") {
   TempDir script("script"), out("out"), elsewhere("elsewhere");
   const std::string data = script.file("data/v.csv", "t,v\n0,0\n1,2\n");
@@ -357,7 +357,7 @@ TEST_CASE("--sandbox: files are read in the script's folder, the working directo
              Contains("require: '"));
 }
 
-TEST_CASE("--sandbox: files are written only in the output directories", "[robustness][sandbox]") {
+TEST_CASE("sandbox: files are written only in the output directories", "[robustness][sandbox]") {
   TempDir script("wscript"), out("wout"), elsewhere("welsewhere");
   const std::string outside = elsewhere.file("victim.txt", "intact\n");
   fs::create_symlink(outside, out.path / "link.txt");
@@ -391,7 +391,7 @@ TEST_CASE("--sandbox: files are written only in the output directories", "[robus
   CHECK(text == "intact");
 }
 
-TEST_CASE("--sandbox: an m:output dir inside the working directory opens it for writing", "[robustness][sandbox]") {
+TEST_CASE("sandbox: an m:output dir inside the working directory opens it for writing", "[robustness][sandbox]") {
   TempDir elsewhere("odir");
   const fs::path inside = fs::current_path() / "seismpm_robustness_out";
   const fs::path by_default = fs::current_path() / "seismpm_robustness_default";
