@@ -5,7 +5,9 @@
 
 namespace seismpm {
 
-// A gnuplot single-quoted string.
+// A gnuplot single-quoted string. Control characters become spaces: a line break inside the quotes
+// would end the command and let the rest of the text (a probe name, a CSV column) run as gnuplot
+// commands, `system` among them.
 std::string gnuplot_quote(const std::string& s);
 
 // Throws OutputError when gnuplot is not installed.
