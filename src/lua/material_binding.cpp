@@ -4,6 +4,7 @@
 
 #include "api_docs.hpp"
 #include "binding.hpp"
+#include "input_checks.hpp"
 #include "materials/drucker_prager.hpp"
 #include "materials/linear_elastic.hpp"
 #include "materials/mohr_coulomb.hpp"
@@ -74,17 +75,21 @@ int material_kind(lua_State* L) {
 }
 
 template <class P>
-void read_elastic(const Args& a, P& p) {
+void read_elastic(lua_State* L, const char* kind, const Args& a, P& p) {
   p.density = a.number("density");
   p.young = a.number("young");
   p.poisson = a.number("poisson");
+  check_plausible_density(L, kind, p.density);
+  check_plausible_young(L, kind, p.young);
 }
 
-void read_strength(const Args& a, StrengthParameters& s) {
+void read_strength(lua_State* L, const char* kind, const Args& a, StrengthParameters& s) {
   s.cohesion = a.number("cohesion");
   s.friction = a.number("friction");
   s.dilation = a.number("dilation");
   s.tension = a.number("tension");
+  check_plausible_friction(L, kind, "friction", s.friction);
+  check_plausible_friction(L, kind, "dilation", s.dilation);
 }
 
 // The material object, its summary led by its name when it has one.
@@ -97,6 +102,8 @@ int push_material(lua_State* L, const Args& a, std::shared_ptr<const Material> m
 int linear_elastic(lua_State* L) {
   const Args a(L, 1, kLinearElasticKeys);
   const double density = a.number("density"), young = a.number("young"), poisson = a.number("poisson");
+  check_plausible_density(L, "linear_elastic", density);
+  check_plausible_young(L, "linear_elastic", young);
   auto material = std::make_shared<LinearElastic>(density, young, poisson);
   std::ostringstream os;
   os << "linear_elastic: density " << density << " kg/m3, E " << young << " Pa, nu " << poisson;
@@ -106,8 +113,8 @@ int linear_elastic(lua_State* L) {
 int mohr_coulomb(lua_State* L) {
   const Args a(L, 1, kMohrCoulombKeys);
   MohrCoulombParameters p;
-  read_elastic(a, p);
-  read_strength(a, p);
+  read_elastic(L, "mohr_coulomb", a, p);
+  read_strength(L, "mohr_coulomb", a, p);
   if (a.has("softening")) {
     const Args soft = a.table("softening");
     p.softening = true;
@@ -128,8 +135,8 @@ int mohr_coulomb(lua_State* L) {
 int drucker_prager(lua_State* L) {
   const Args a(L, 1, kDruckerPragerKeys);
   DruckerPragerParameters p;
-  read_elastic(a, p);
-  read_strength(a, p);
+  read_elastic(L, "drucker_prager", a, p);
+  read_strength(L, "drucker_prager", a, p);
   const std::string fit = a.choice("fit");
   p.fit = parse_fit(fit);
   auto material = std::make_shared<DruckerPrager>(p);

@@ -6,11 +6,35 @@
 
 #include "api_docs.hpp"
 #include "binding.hpp"
+#include "core/body_overlap.hpp"
+#include "input_checks.hpp"
 #include "objects.hpp"
 
 namespace seismpm::lua {
 
 namespace {
+
+std::string metres_text(double v) {
+  std::ostringstream os;
+  os.precision(4);
+  os << v;
+  return os.str();
+}
+
+// A body made over another puts twice the mass in their common space: a warning naming both, since a
+// rigid body may be laid into soil on purpose.
+void warn_overlaps(lua_State* L, ModelHandle& h, int body, std::shared_ptr<const Region> shape) {
+  h.body_shapes.resize(h.model.bodies().size());
+  h.body_shapes[body] = std::move(shape);
+  std::vector<const Region*> shapes;
+  for (const auto& s : h.body_shapes) shapes.push_back(s.get());
+  const auto& bodies = h.model.bodies();
+  for (const auto& o : overlaps_of_body(h.model.particles(), shapes, body))
+    warn(L, "body '" + bodies[body].name + "' overlaps body '" + bodies[o.body].name +
+                "': " + std::to_string(o.particles) + " of its particles lie inside the shape of '" +
+                bodies[o.body].name + "' (the first at " + point_text(o.first) +
+                "), where the two put twice the mass; trim one shape so they only touch");
+}
 
 // The kernel's range (Model::new_body refuses the rest).
 const Key kPpc = arg::integer("ppc", "particles per cell along each axis").in(closed(1, kMaxParticlesPerCell)).def(2);
@@ -50,7 +74,8 @@ const Key kFixKeys[] = {
 const Key kProbeKeys[] = {
     arg::string("name", "the probe's name, unique in the model").shown("probeN"),
     arg::object("body", kBodyType, "the body whose particle it follows").required(),
-    arg::point("at", "m", "the particle of the body nearest to it is followed").required(),
+    arg::point("at", "m", "the particle of the body nearest to it is followed (within one cell of the body)")
+        .required(),
     arg::number("every", "s", "sampling interval of simulated time (0: every step)").in(at_least(0)).def(0.01),
 };
 
@@ -159,6 +184,7 @@ int model_body(lua_State* L) {
   check_regions(h, regions, material_at, *region, ppc, name);
   const int body = h.model.add_body(name, ppc);
   fill_region(h, body, material_at, *region, ppc);
+  warn_overlaps(L, h, body, region);
   push_object(L, BodyObject{handle, body});
   return 1;
 }
@@ -179,6 +205,7 @@ int model_rigid(lua_State* L) {
   const int body = h.model.add_rigid_body(name, ppc, density, velocity);
   fill_region(
       h, body, [](const Vec<2>&) { return -1; }, *region, ppc);  // a rigid body has its own
+  warn_overlaps(L, h, body, region);
   push_object(L, BodyObject{handle, body});
   return 1;
 }
@@ -246,6 +273,12 @@ int model_probe(lua_State* L) {
   for (std::size_t i = 0; i < p.size(); ++i)
     if (p.body[i] == body && (p.x[i] - at).norm() < best) best = (p.x[i] - at).norm(), id = p.id[i];
   if (id < 0) throw Error("key 'body' has no particles");
+  // A point outside the body would silently follow whatever particle is nearest, however far.
+  const double cell = handle->model.grid().cell();
+  if (best > cell)
+    throw Error("key 'at': " + point_text(at) + " is " + metres_text(best) + " m from the nearest particle of body '" +
+                handle->model.bodies()[body].name + "', at " + point_text(p.x[handle->model.index_of(id)]) +
+                "; a probe must lie within one cell (" + metres_text(cell) + " m) of its body");
   push_object(L, ProbeObject{handle, sim.add_probe(name, id, a.number("every"))});
   return 1;
 }

@@ -37,6 +37,8 @@ struct ModelHandle {
   Simulation<2> simulation;
   Model<2>& model = simulation.model();  // what most bindings build and inspect
   std::map<const Material*, int> material_index;
+  // The shape each body was filled from, by body (null where not known), to tell overlapping bodies.
+  std::vector<std::shared_ptr<const Region>> body_shapes;
 
   int material(const MaterialObject& m) {
     auto it = material_index.find(m.material.get());

@@ -7,6 +7,7 @@
 
 #include "api_docs.hpp"
 #include "binding.hpp"
+#include "input_checks.hpp"
 #include "lua_function.hpp"
 #include "objects.hpp"
 #include "sandbox.hpp"
@@ -21,6 +22,7 @@ constexpr const char* kSessionKey = "seismpm.session";
 int param(lua_State* L) {
   if (lua_type(L, 1) != LUA_TSTRING) throw Error("expects a parameter name (string) and a default");
   const char* name = lua_tostring(L, 1);
+  session(L).params_read.insert(name);
   const auto& params = session(L).params;
   const auto it = params.find(name);
   if (it == params.end()) {
@@ -184,12 +186,13 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
   lua_pop(L_, 2);
   std::error_code ec;
   session_.script_dir = std::filesystem::absolute(file, ec).parent_path().string();
-  if (luaL_loadfilex(L_, file.c_str(), "t") != LUA_OK || call(0, 0) != LUA_OK) {
+  const bool ok = luaL_loadfilex(L_, file.c_str(), "t") == LUA_OK && call(0, 0) == LUA_OK;
+  if (!ok) {
     std::fprintf(stderr, "seismpm: %s\n", lua_tostring(L_, -1));
     lua_pop(L_, 1);
-    return false;
   }
-  return true;
+  if (ok) warn_unread_params(L_);  // after a failure the script may not have reached its parameters
+  return ok;
 }
 
 bool Runtime::execute(const std::string& code, const std::string& name, std::string& error) {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@ namespace seismpm::lua {
 
 struct Session {
   std::map<std::string, std::string> params;  // --set name=value
+  std::set<std::string> params_read;          // the names mpm.param was asked for (a --set of another is a typo)
+  // Input warnings (input_checks.hpp) given so far, as printed: a likely mistake that still runs.
+  std::vector<std::string> warnings;
   // --out. The one rule for it: it replaces a DEFAULT output directory, never one a script names.
   // mpm.out_dir(default) and m:output without dir both ask output_dir(); m:output{ dir } writes into dir.
   std::string out_dir;
