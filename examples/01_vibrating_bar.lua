@@ -2,6 +2,7 @@
 -- A bar fixed at x = 0 and free at x = L starts with v(x) = v0 sin(pi x / 2L). The closed form:
 -- the centre of mass moves with v_cm(t) = (2/pi) v0 cos(omega t), omega = (pi / 2L) sqrt(E / rho),
 -- period T = 4 L / sqrt(E / rho). Plane strain with nu = 0 makes the 2D model a 1D bar.
+-- E and rho are the benchmark's own (dimensionless) values: seismpm warns that they are no soil's.
 --   seismpm examples/01_vibrating_bar.lua [--set cells=25]
 local L, E, rho, v0 = 25.0, 100.0, 1.0, 0.1                -- m, Pa, kg/m3, m/s
 local cells = mpm.param("cells", 25)                          -- cells along the bar

@@ -63,7 +63,7 @@ std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& prob
 
 template <int Dim>
 VtuMeta particle_meta(const Model<Dim>& model, const std::string& phase) {
-  VtuMeta meta{model.time(), phase, {}, {}};
+  VtuMeta meta{model.time(), phase, {}, {}, model.phase_time()};
   for (int m = 0; m < model.material_count(); ++m) meta.material_names.push_back(model.material_name(m));
   for (const Body& b : model.bodies()) meta.body_names.push_back(b.name);
   return meta;
@@ -98,7 +98,8 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
   }
   if (settings_.grid) {
     const std::string grid_name = numbered("grid", n);
-    write_grid_vtu(settings_.dir + "/" + grid_name, model.grid(), model.mass_threshold(), VtuMeta{t, phase, {}, {}});
+    write_grid_vtu(settings_.dir + "/" + grid_name, model.grid(), model.mass_threshold(),
+                   VtuMeta{t, phase, {}, {}, model.phase_time()});
     grid_files_.emplace_back(t, grid_name);
     write_file_atomically(settings_.dir + "/grid.pvd", pvd_text(grid_files_));
   }

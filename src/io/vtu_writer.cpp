@@ -3,6 +3,7 @@
 #include <vtkCellType.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -26,6 +27,10 @@ void add_meta(vtkUnstructuredGrid* grid, const VtuMeta& meta) {
   time->SetName("TimeValue");
   time->InsertNextValue(meta.time);
   grid->GetFieldData()->AddArray(time);
+  vtkNew<vtkDoubleArray> phase_time;
+  phase_time->SetName("phase_time");
+  phase_time->InsertNextValue(meta.phase_time);
+  grid->GetFieldData()->AddArray(phase_time);
   vtkNew<vtkStringArray> phase;
   phase->SetName("phase");
   phase->InsertNextValue(meta.phase);
@@ -100,6 +105,15 @@ void write_particles_vtu(const std::string& path, const Particles<Dim>& P, const
     const QuantityInfo& q = quantity_info(a);
     if (!q.vtu_array) continue;  // the position: the points themselves
     const std::string name(q.name);
+    if (a == Quantity::Id) {
+      // The global-id array, which ParaView's selections and temporal filters follow across files.
+      vtkNew<vtkIdTypeArray> arr;
+      arr->SetName(name.c_str());
+      arr->SetNumberOfValues(n);
+      for (vtkIdType k = 0; k < n; ++k) arr->SetValue(k, P.id[index[k]]);
+      grid->GetPointData()->SetGlobalIds(arr);
+      continue;
+    }
     if (q.integer) {
       vtkNew<vtkIntArray> arr;
       arr->SetName(name.c_str());

@@ -2,6 +2,7 @@
 // zlib-compressed, appended raw data. The only translation unit that includes VTK.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -26,15 +27,27 @@ struct VtuMeta {
   // The names of the material and body indices that the particle arrays "material" and "body" hold,
   // by index (field data arrays material_names and body_names; none when empty).
   std::vector<std::string> material_names, body_names;
+  double phase_time = 0.0;  // s since the phase began (the shaking time in a dynamic phase)
 };
 
-// Writes the particles for which keep(p) is true to `path` atomically. Throws OutputError.
+// Writes the particles for which keep(p) is true to `path` atomically, in `id` order: the kernel
+// re-sorts particles by cell, and ParaView's time filters (Plot Selection Over Time, Temporal
+// Statistics, Pathlines) follow a point by its index. `id` is also the file's global-id array.
+// Throws OutputError.
 template <int Dim, class Keep>
 void write_particles_vtu(const std::string& path, const Particles<Dim>& particles, const std::vector<VtuArray>& arrays,
                          const VtuMeta& meta, Keep&& keep) {
-  std::vector<std::size_t> index;
+  // Ids are the creation indices 0..n-1, so a slot per id orders them in one pass.
+  std::size_t slots = 0;
   for (std::size_t p = 0; p < particles.size(); ++p)
-    if (keep(p)) index.push_back(p);
+    slots = std::max(slots, static_cast<std::size_t>(particles.id[p]) + 1);
+  std::vector<std::size_t> by_id(slots, particles.size());
+  for (std::size_t p = 0; p < particles.size(); ++p)
+    if (keep(p)) by_id[static_cast<std::size_t>(particles.id[p])] = p;
+  std::vector<std::size_t> index;
+  index.reserve(particles.size());
+  for (std::size_t p : by_id)
+    if (p < particles.size()) index.push_back(p);
   write_particles_vtu(path, particles, index, arrays, meta);
 }
 

@@ -29,11 +29,13 @@ void warn_overlaps(lua_State* L, ModelHandle& h, int body, std::shared_ptr<const
   std::vector<const Region*> shapes;
   for (const auto& s : h.body_shapes) shapes.push_back(s.get());
   const auto& bodies = h.model.bodies();
-  for (const auto& o : overlaps_of_body(h.model.particles(), shapes, body))
+  for (const auto& o : overlaps_of_body(h.model.particles(), shapes, body)) {
+    if (bodies[body].rigid && bodies[o.body].rigid) continue;  // prescribed motion: their masses do not act
     warn(L, "body '" + bodies[body].name + "' overlaps body '" + bodies[o.body].name +
                 "': " + std::to_string(o.particles) + " of its particles lie inside the shape of '" +
                 bodies[o.body].name + "' (the first at " + point_text(o.first) +
                 "), where the two put twice the mass; trim one shape so they only touch");
+  }
 }
 
 // The kernel's range (Model::new_body refuses the rest).

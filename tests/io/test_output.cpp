@@ -270,3 +270,58 @@ TEST_CASE("the --out directory replaces a default output directory, never one th
   CHECK(plain.error_of("assert(mpm.out_dir('out/default') == 'out/default' and mpm.out_dir() == nil)") == "");
   CHECK_THAT(plain.error_of(model + "m:output{ every = 0.1 }"), Catch::Contains("missing key 'dir'"));
 }
+
+TEST_CASE("particle files are in id order across the kernel's sorts, id the global ids, with the phase time",
+          "[io][vtu]") {
+  const std::string dir = fresh_dir("vtu_id_order");
+  test::LuaFixture f;
+  const std::string error = f.error_of(R"(
+    m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
+    mat = mpm.material.linear_elastic{ density = 2000, young = 1e7, poisson = 0.3 }
+    -- Two bodies side by side: made one after the other, their particles interleave once sorted by cell.
+    local a = m:body{ name = "left", material = mat, shape = mpm.shape.rectangle{ 0, 0, 0.5, 0.5 }, ppc = 3 }
+    local b = m:body{ name = "right", material = mat, shape = mpm.shape.rectangle{ 0.5, 0, 1, 0.5 }, ppc = 3 }
+    m:fix{ side = "bottom" }
+    m:output{ dir = ")" + dir + R"(", every = 0.05 }
+    m:run{ duration = 0.1 }
+    m:dynamic_phase{ duration = 0.1 }
+    ids, xs = a:field("id"), a:field("x")
+    for i, id in ipairs(b:field("id")) do ids[#ids + 1] = id end
+    for i, x in ipairs(b:field("x")) do xs[#xs + 1] = x end
+  )");
+  REQUIRE(error == "");
+  lua_State* L = f.runtime.state();
+  // In storage the kernel's sort by cell interleaves the rows of the two bodies; the files must not.
+  lua_getglobal(L, "ids");
+  lua_getglobal(L, "xs");
+  const int n = static_cast<int>(lua_rawlen(L, -2));
+  REQUIRE(n == 450);
+  std::vector<double> x_of_id(n);
+  for (int i = 1; i <= n; ++i) {
+    lua_rawgeti(L, -2, i);
+    const int id = static_cast<int>(lua_tonumber(L, -1));
+    lua_rawgeti(L, -2, i);
+    x_of_id[id] = lua_tonumber(L, -1);
+    lua_pop(L, 2);
+  }
+  lua_pop(L, 2);
+  const auto files = read_pvd(dir + "/particles.pvd");
+  REQUIRE(files.size() >= 4);
+  for (const auto& [t, file] : files) {
+    auto grid = read_vtu(dir + "/" + file);
+    auto* ids = grid->GetPointData()->GetGlobalIds();
+    REQUIRE(ids != nullptr);
+    CHECK(std::string(ids->GetName()) == "id");
+    bool in_order = true;
+    for (vtkIdType k = 0; k < grid->GetNumberOfPoints(); ++k) in_order = in_order && ids->GetTuple1(k) == k;
+    CHECK(in_order);
+    REQUIRE(grid->GetFieldData()->GetArray("phase_time") != nullptr);
+  }
+  // The last file: point k is particle k, and the phase time is the dynamic phase's own clock.
+  auto last = read_vtu(dir + "/" + files.back().second);
+  double worst = 0.0;
+  for (int k = 0; k < n; ++k) worst = std::max(worst, std::abs(last->GetPoint(k)[0] - x_of_id[k]));
+  CHECK(worst == 0.0);
+  CHECK(last->GetFieldData()->GetArray("TimeValue")->GetTuple1(0) == Approx(0.2));
+  CHECK(last->GetFieldData()->GetArray("phase_time")->GetTuple1(0) == Approx(0.1));
+}
