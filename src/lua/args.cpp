@@ -1,5 +1,6 @@
 #include "args.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -43,6 +44,14 @@ auto read_top(lua_State* L, F&& read) {
 
 Args::Args(lua_State* L, int index, std::span<const Key> keys, const char* within)
     : L_(L), index_(lua_absindex(L, index)), keys_(keys), within_(within) {
+  // A call whose every key may be left out may leave out the table too: m:gravity_phase().
+  const bool all_optional =
+      std::none_of(keys_.begin(), keys_.end(), [](const Key& k) { return k.mandatory || k.type == Type::Positional; });
+  if (all_optional && !within_ && lua_isnoneornil(L_, index_)) {
+    if (lua_gettop(L_) < index_) lua_settop(L_, index_);
+    lua_newtable(L_);
+    lua_replace(L_, index_);
+  }
   if (!lua_istable(L_, index_))
     throw Error(context() + "expects a table of named arguments { key = value, ... }, got " + type_name(L_, index_));
   std::vector<std::string> known;

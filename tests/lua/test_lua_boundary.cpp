@@ -311,3 +311,21 @@ TEST_CASE("a script runs after a chunk that made the globals hostile", "[lua][bo
   REQUIRE(f.error_of("setmetatable(_G, { __newindex = function() error('hostile __newindex', 0) end })") == "");
   CHECK(f.runtime.run_file(file, {"word"}));  // `arg` set raw, outside any protected call
 }
+
+TEST_CASE("a call whose keys all have defaults needs no table; one with a required key still names it",
+          "[lua][boundary]") {
+  seismpm::test::LuaFixture f;
+  REQUIRE(f.error_of(R"(
+    m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }
+    local soil = mpm.material.linear_elastic{ density = 2000, young = 1e7, poisson = 0.3 }
+    m:body{ name = "block", material = soil, shape = mpm.shape.rectangle{ 0, 0, 1, 0.5 } }
+    m:fix{ side = "bottom" }
+    eq = m:gravity_phase()
+    t = eq.time
+  )") == "");
+  CHECK(f.number("t") > 0.0);  // it ran, with the default tolerance
+  CHECK(f.error_of("m:gravity_phase(nil)") == "");
+  CHECK(f.error_of("mpm.model()").find("expects a table of named arguments") != std::string::npos);
+  CHECK(f.error_of("m:gravity_phase(3)").find("expects a table of named arguments { key = value, ... }, got number") !=
+        std::string::npos);
+}
