@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -64,6 +65,7 @@ class Output {
   std::string probes_header_;
   std::vector<std::size_t> probe_samples_written_;
   std::uint64_t probes_bytes_ = 0, probes_last_row_ = 0;
+  double probes_last_row_time_ = std::numeric_limits<double>::quiet_NaN();
   void write_reactions(const Model<Dim>& model, const std::string& phase);
   void write_probes_whole(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
 };
@@ -78,9 +80,8 @@ std::string pvd_text(const std::vector<std::pair<double, std::string>>& files);
 // probes.csv: "time (s)" and "<probe>.<field>" columns (quoted as CSV needs); a row per sampled time.
 template <int Dim>
 std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
-// Its header line, and the rows of the samples from index first[k] on of each probe k (merged by
-// time), with the probes' samples at time `refill` before first[k] too (the last row on file, written
-// again); refill = NaN: none.
+// Its header line; and the rows of the samples from index first[k] on of each probe k, merged by time
+// (a probe without a sample at a row's time leaves its cells empty).
 template <int Dim>
 std::string probes_csv_header(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
 template <int Dim>
