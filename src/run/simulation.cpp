@@ -226,7 +226,8 @@ RunEnd Simulation<Dim>::run_for(const RunSpec& spec, const ActiveRun* resumed) {
       ++active_.taken;
       how = after_step(spec, active_.call, progress);
       if (how != RunEnd::Completed) break;
-      checkpoint_if_due();  // the run goes on: a restart takes it up from here
+      // Only while the run goes on (a restart takes it up from here); after its last step it is over.
+      if (!schedule_.run_over(model_.time()) && active_.taken < active_.max_steps) checkpoint_if_due();
     }
   } catch (const SimulationError&) {
     // The files written so far stay as they are: valid, up to the last output time.

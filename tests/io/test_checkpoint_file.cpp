@@ -132,7 +132,7 @@ TEST_CASE("checkpoint file: damaged files are named errors", "[io][checkpoint][r
   SECTION("a count larger than its bytes, CRC intact: refused before any allocation") {
     CheckpointWriter w;
     SectionWriter& s = w.section("VALUES");
-    s.i64(std::int64_t{1} << 60);  // "2^60 doubles follow"
+    s.i64((std::int64_t{1} << 60) + 1000);  // "2^60 doubles follow"; read as a text length: 1000 bytes
     s.f64(1.0);
     write_bytes(file, w.bytes());
     const CheckpointReader r(file);
