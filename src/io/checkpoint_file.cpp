@@ -21,8 +21,8 @@ static_assert(std::endian::native == std::endian::little, "checkpoints are writt
 namespace {
 
 constexpr std::size_t kTagBytes = 8;
-constexpr std::size_t kHeaderBytes = 16;                          // magic, version, reserved
-constexpr std::size_t kSectionOverhead = kTagBytes + 8 + 4;       // tag, length, CRC
+constexpr std::size_t kHeaderBytes = 16;                     // magic, version, reserved
+constexpr std::size_t kSectionOverhead = kTagBytes + 8 + 4;  // tag, length, CRC
 constexpr std::string_view kEndTag = "END";
 
 std::array<std::uint32_t, 256> crc_table() {
@@ -115,8 +115,7 @@ void CheckpointWriter::write(const std::string& path) const {
   const int err = errno;
   if (::close(fd) != 0 || !ok) {
     std::remove(tmp.c_str());
-    throw OutputError("cannot write the checkpoint " + path + ": " + std::strerror(ok ? errno : err) +
-                      " (disk full?)");
+    throw OutputError("cannot write the checkpoint " + path + ": " + std::strerror(ok ? errno : err) + " (disk full?)");
   }
   commit_file(tmp, path);
   // The rename itself reaches the disk with the directory.

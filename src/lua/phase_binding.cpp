@@ -95,8 +95,9 @@ void push_result(lua_State* L, const GravityPhaseResult& r) {
 // m:run{} after mpm.restart: the interrupted run, finished; a gravity phase returns its result.
 int finish_interrupted_run(lua_State* L, ModelHandle& h, const Args& a, const PeriodicCall& call) {
   if (!h.simulation.has_interrupted_run())
-    throw Error("key 'duration' must be a number, got nil (only a model restored from a checkpoint written during "
-                "a run, by mpm.restart, finishes that run with m:run{})");
+    throw Error(
+        "key 'duration' must be a number, got nil (only a model restored from a checkpoint written during "
+        "a run, by mpm.restart, finishes that run with m:run{})");
   if (a.has("damping")) throw Error("key 'damping': the interrupted run goes on with its own damping");
   const double every = h.simulation.interrupted_call_every();
   if (every > 0.0 && call.every <= 0.0)
@@ -121,7 +122,6 @@ int model_run(lua_State* L) {
   run_in_session(L, h, [&](Simulation<2>& sim) { sim.run(duration, call.run_call(L, h.model)); });
   return 0;
 }
-
 
 // m:gravity_phase{ damping = 0.7, tolerance = 0.005, max_time = 10, k0 } -> { time, steps, unbalanced, kinetic }
 int model_gravity_phase(lua_State* L) {

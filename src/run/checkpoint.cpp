@@ -497,7 +497,8 @@ class CheckpointAccess {
     p.for_each_member([&](auto& member) {
       using T = typename std::decay_t<decltype(member)>::value_type;
       member = get_vector<T>(r, "a particle field");
-      if (member.size() != n) r.fail("a particle field has " + std::to_string(member.size()) + " values, not " + std::to_string(n));
+      if (member.size() != n)
+        r.fail("a particle field has " + std::to_string(member.size()) + " values, not " + std::to_string(n));
     });
     r.finish();
     std::vector<char> seen(n, 0);
@@ -534,7 +535,8 @@ class CheckpointAccess {
       m.add_contact(a, b, friction);
     }
     const std::size_t n = r.count(Dim * 3 * 8);
-    if (n != m.bodies_.size()) r.fail("rigid motions for " + std::to_string(n) + " bodies, not " + std::to_string(m.bodies_.size()));
+    if (n != m.bodies_.size())
+      r.fail("rigid motions for " + std::to_string(n) + " bodies, not " + std::to_string(m.bodies_.size()));
     std::vector<std::string> keys;
     for (std::size_t b = 0; b < n; ++b) {
       RigidMotion<Dim>& motion = m.contact_.motion_[b];

@@ -27,7 +27,8 @@ struct RunScope {
   RunScope(EventSchedule& s, double start, double duration, EventSchedule::Stream& run_call, const RunCall* call)
       : schedule(s), stream(run_call) {
     schedule.begin_run(start, duration);
-    if (stream < 0 && call && call->active()) stream = schedule.add(EventSchedule::Spacing::FromStart, call->every, start);
+    if (stream < 0 && call && call->active())
+      stream = schedule.add(EventSchedule::Spacing::FromStart, call->every, start);
   }
   ~RunScope() {
     if (stream >= 0) schedule.remove(stream);
@@ -213,8 +214,8 @@ RunEnd Simulation<Dim>::run_for(const RunSpec& spec, const ActiveRun* resumed) {
   if (!resumed) drop_interrupted_run();
   FlagScope running(running_);
   Progress progress(stderr, progress_mode_);
-  active_ = resumed ? *resumed
-                    : ActiveRun{spec.kind, model_.time(), spec.duration, spec.max_steps, 0, spec.final_output, -1};
+  active_ =
+      resumed ? *resumed : ActiveRun{spec.kind, model_.time(), spec.duration, spec.max_steps, 0, spec.final_output, -1};
   RunScope scope(schedule_, active_.start, active_.duration, active_.call, spec.call);
   progress.start(phase_, model_.time(), schedule_.run_end(), model_.particles().size(), model_.steps(),
                  static_cast<bool>(spec.done));
@@ -291,8 +292,8 @@ template <int Dim>
 void Simulation<Dim>::checkpoint_if_due() {
   if (checkpoint_path_.empty() || (checkpoint_every_ <= 0.0 && !checkpoint_due_)) return;
   const auto now = std::chrono::steady_clock::now();
-  const bool due =
-      checkpoint_due_ ? checkpoint_due_() : std::chrono::duration<double>(now - last_checkpoint_).count() >= checkpoint_every_;
+  const bool due = checkpoint_due_ ? checkpoint_due_()
+                                   : std::chrono::duration<double>(now - last_checkpoint_).count() >= checkpoint_every_;
   if (!due) return;
   write_checkpoint(*this, checkpoint_path_);
   last_checkpoint_ = std::chrono::steady_clock::now();
@@ -325,8 +326,9 @@ template <int Dim>
 ResumedRun Simulation<Dim>::resume(const RunCall& call) {
   if (running_) throw std::logic_error("a run's call may not step the model");
   if (!interrupted_)
-    throw InputError("there is no interrupted run to finish: the model was not restored from a checkpoint written "
-                     "during a run, or that run was finished or dropped (give a duration)");
+    throw InputError(
+        "there is no interrupted run to finish: the model was not restored from a checkpoint written "
+        "during a run, or that run was finished or dropped (give a duration)");
   const double every = interrupted_call_every();
   if (every > 0.0 && !call.active()) {
     std::ostringstream os;

@@ -182,8 +182,8 @@ class Simulation {
   Progress::Mode progress_mode_ = Progress::Mode::Quiet;
   const std::atomic<bool>* interrupt_ = nullptr;
   bool running_ = false;
-  ActiveRun active_;                     // while running_
-  std::optional<GravityRun> gravity_;    // while a gravity phase runs, or is interrupted
+  ActiveRun active_;                      // while running_
+  std::optional<GravityRun> gravity_;     // while a gravity phase runs, or is interrupted
   std::optional<ActiveRun> interrupted_;  // restored from a checkpoint written during a run
   std::string checkpoint_path_;
   double checkpoint_every_ = 0.0;  // s of wall time

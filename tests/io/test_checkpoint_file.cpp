@@ -64,7 +64,8 @@ TEST_CASE("checkpoint file: values round-trip bit for bit", "[io][checkpoint]") 
   CHECK(s.text() == "caf\xc3\xa9");
   CHECK(s.array<double>() == std::vector<double>{1.0, 0.1, 1e300});
   s.finish();
-  CHECK_THROWS_WITH(s.u8(), Catch::Contains(file) && Catch::Contains("section VALUES") && Catch::Contains("ends early"));
+  CHECK_THROWS_WITH(s.u8(),
+                    Catch::Contains(file) && Catch::Contains("section VALUES") && Catch::Contains("ends early"));
   CHECK_THROWS_WITH(r.section("OTHER"), Catch::Contains("no section OTHER"));
   // No temporary file is left beside it.
   int files = 0;
@@ -120,9 +121,7 @@ TEST_CASE("checkpoint file: damaged files are named errors", "[io][checkpoint][r
       CHECK_THAT(e, Catch::Contains(file) && Catch::Contains("truncated"));
     }
   }
-  SECTION("bytes after the end") {
-    CHECK_THAT(error_of(good + "x"), Catch::Contains("1 bytes after the END section"));
-  }
+  SECTION("bytes after the end") { CHECK_THAT(error_of(good + "x"), Catch::Contains("1 bytes after the END section")); }
   SECTION("a length that claims more than the file") {
     std::string bad = good;
     const std::uint64_t huge = 1ull << 62;

@@ -71,8 +71,8 @@ TEST_CASE("checkpoint binding: a model saved and restored in Lua", "[lua][checkp
   // Between runs there is nothing to finish.
   CHECK_THAT(f.error_of("r:run{}"), Contains("key 'duration' must be a number") && Contains("mpm.restart"));
   // Not from a run's call, which a restart could not take up.
-  CHECK_THAT(f.error_of("m:run{ duration = 0.02, every = 0.01, call = function() m:checkpoint{ file = " +
-                        quoted(file) + " } end }"),
+  CHECK_THAT(f.error_of("m:run{ duration = 0.02, every = 0.01, call = function() m:checkpoint{ file = " + quoted(file) +
+                        " } end }"),
              Contains("may not write a checkpoint"));
 }
 
@@ -82,8 +82,7 @@ TEST_CASE("checkpoint binding: checkpoint_every writes a checkpoint during runs,
   test::LuaFixture f;
   // A checkpoint at a tiny wall-clock interval: one after every step, the last one after the run's
   // last step, before the run's end (its last samples and file) is done.
-  REQUIRE(f.error_of(model_code(dir.string()) +
-                     "m:output{ dir = " + quoted(dir.string()) +
+  REQUIRE(f.error_of(model_code(dir.string()) + "m:output{ dir = " + quoted(dir.string()) +
                      ", every = 0.05, checkpoint_every = 1e-9 }\n"
                      "m:dynamic_phase{ duration = 0.1, every = 0.04, call = function() end }\n"
                      "final = block:field('vx')[3]") == "");
