@@ -1,4 +1,4 @@
-// Points in messages.
+// Numbers and points in messages.
 #pragma once
 
 #include <sstream>
@@ -7,6 +7,14 @@
 #include "types.hpp"
 
 namespace seismpm {
+
+// A number with `digits` significant digits.
+inline std::string format_number(double v, int digits = 6) {
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
 
 // "(x, y)" with 6 significant digits.
 template <int Dim>

@@ -5,20 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 
+#include "core/format.hpp"
 #include "session.hpp"
 
 namespace seismpm::lua {
 
 namespace {
-
-std::string number_text(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 // Edits (insert, delete, replace) between two names: a typo is one or two.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -50,25 +43,25 @@ void warn(lua_State* L, const std::string& what) {
 void check_plausible_density(lua_State* L, const char* material, double density) {
   // Water is 1000 kg/m3 and dry soils 1200-2200; below 100 the number is most likely a unit weight.
   if (density > 0.0 && density < 100.0)
-    warn(L, std::string(material) + ": density = " + number_text(density) +
+    warn(L, std::string(material) + ": density = " + format_number(density) +
                 " kg/m3 is below 100: a unit weight in kN/m3? density is a mass per volume (a unit weight of " +
-                number_text(density) + " kN/m3 is a density of " + number_text(std::round(density * 1000.0 / 9.81)) +
-                " kg/m3)");
+                format_number(density) + " kN/m3 is a density of " +
+                format_number(std::round(density * 1000.0 / 9.81)) + " kg/m3)");
 }
 
 void check_plausible_young(lua_State* L, const char* material, double young) {
   // The softest soils modelled (loose sand, soft clay) are about 1 MPa; below 0.1 MPa, kPa or MPa typed?
   if (young > 0.0 && young < 1e5)
-    warn(L, std::string(material) + ": young = " + number_text(young) +
+    warn(L, std::string(material) + ": young = " + format_number(young) +
                 " Pa is below 0.1 MPa, softer than any soil: kPa or MPa typed? young is in Pa (e.g. 2.5e7 for 25 MPa)");
 }
 
 void check_plausible_friction(lua_State* L, const char* material, const char* key, double degrees) {
   // phi = 0 is a legitimate undrained (Tresca-like) soil; between 0 and 1 degree it is radians typed.
   if (degrees > 0.0 && degrees < 1.0)
-    warn(L, std::string(material) + ": " + key + " = " + number_text(degrees) +
-                " is below 1 degree: radians? angles are in degrees (" + number_text(degrees) +
-                " rad = " + number_text(degrees * 180.0 / 3.14159265358979323846) + " degrees)");
+    warn(L, std::string(material) + ": " + key + " = " + format_number(degrees) +
+                " is below 1 degree: radians? angles are in degrees (" + format_number(degrees) +
+                " rad = " + format_number(degrees * 180.0 / 3.14159265358979323846) + " degrees)");
 }
 
 void warn_unread_params(lua_State* L) {

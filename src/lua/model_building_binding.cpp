@@ -7,19 +7,13 @@
 #include "api_docs.hpp"
 #include "binding.hpp"
 #include "core/body_overlap.hpp"
+#include "core/format.hpp"
 #include "input_checks.hpp"
 #include "objects.hpp"
 
 namespace seismpm::lua {
 
 namespace {
-
-std::string metres_text(double v) {
-  std::ostringstream os;
-  os.precision(4);
-  os << v;
-  return os.str();
-}
 
 // A body made over another puts twice the mass in their common space: a warning naming both, since a
 // rigid body may be laid into soil on purpose.
@@ -271,17 +265,18 @@ int model_probe(lua_State* L) {
   // The particle of the body nearest to `at`.
   const auto& p = handle->model.particles();
   double best = INFINITY;
-  int id = -1;
+  std::size_t nearest = p.size();
   for (std::size_t i = 0; i < p.size(); ++i)
-    if (p.body[i] == body && (p.x[i] - at).norm() < best) best = (p.x[i] - at).norm(), id = p.id[i];
-  if (id < 0) throw Error("key 'body' has no particles");
+    if (p.body[i] == body && (p.x[i] - at).norm() < best) best = (p.x[i] - at).norm(), nearest = i;
+  if (nearest == p.size()) throw Error("key 'body' has no particles");
   // A point outside the body would silently follow whatever particle is nearest, however far.
   const double cell = handle->model.grid().cell();
   if (best > cell)
-    throw Error("key 'at': " + point_text(at) + " is " + metres_text(best) + " m from the nearest particle of body '" +
-                handle->model.bodies()[body].name + "', at " + point_text(p.x[handle->model.index_of(id)]) +
-                "; a probe must lie within one cell (" + metres_text(cell) + " m) of its body");
-  push_object(L, ProbeObject{handle, sim.add_probe(name, id, a.number("every"))});
+    throw Error("key 'at': " + point_text(at) + " is " + format_number(best, 4) +
+                " m from the nearest particle of body '" + handle->model.bodies()[body].name + "', at " +
+                point_text(p.x[nearest]) + "; a probe must lie within one cell (" + format_number(cell, 4) +
+                " m) of its body");
+  push_object(L, ProbeObject{handle, sim.add_probe(name, p.id[nearest], a.number("every"))});
   return 1;
 }
 
