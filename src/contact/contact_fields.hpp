@@ -28,6 +28,9 @@ struct ContactPair {
 };
 
 template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
+template <int Dim>
 class ContactFields {
  public:
   using Velocity = std::array<std::shared_ptr<const History>, Dim>;
@@ -88,6 +91,8 @@ class ContactFields {
   const SharedNodes<Dim>& nodes() const { return shared_; }
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   ContactPair* find_pair(int a, int b);
   int mark_cell_fields(const Particles<Dim>& particles, const Grid<Dim>& grid, const ParticleSupport<Dim>& support);
   template <class Shape>

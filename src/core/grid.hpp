@@ -16,6 +16,9 @@ enum class Side { Left, Right, Bottom, Top, Back, Front };
 enum DofMask : unsigned { FixX = 1u, FixY = 2u, FixZ = 4u };
 
 template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
+template <int Dim>
 class Grid {
  public:
   // Covers the domain [lower, upper] with cells of size `cell` (the upper edge rounded up to whole
@@ -60,6 +63,8 @@ class Grid {
   std::vector<Vec<Dim>> acceleration;  // for the FLIP update of particle velocities
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   Vec<Dim> origin_;
   double h_;
   int ghost_ = 0;

@@ -20,6 +20,7 @@ class ConstantHistory : public History {
  public:
   explicit ConstantHistory(double value) : value_(value) {}
   double at(double) const override { return value_; }
+  double value() const { return value_; }
   std::string describe() const override;
 
  private:

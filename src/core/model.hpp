@@ -55,6 +55,9 @@ struct ModelSettings {
 };
 
 template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
+template <int Dim>
 class Model {
  public:
   explicit Model(const ModelSettings<Dim>& settings);
@@ -164,6 +167,8 @@ class Model {
   Vec<Dim> momentum() const;
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   Model(const Model&) = default;  // through copy_without_fixes only
 
   // The step, stage by stage (model.cpp, transfer.cpp, stress_update.cpp).

@@ -38,6 +38,9 @@ double stable_time_step(const Particles<Dim>& particles, const MaterialConstants
 template <int Dim>
 std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c);
 
+template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
 class TimeStepControl {
  public:
   // The next step: `allowed` (CFL or fixed), no longer than `dt_max` (to land on an event).
@@ -52,6 +55,8 @@ class TimeStepControl {
   double first() const { return first_; }
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   double first_ = 0.0;
 };
 

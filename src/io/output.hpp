@@ -25,6 +25,9 @@ struct OutputSettings {
 };
 
 template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
+template <int Dim>
 class Output {
  public:
   // Creates the directory; throws OutputError naming it when that fails.
@@ -37,6 +40,8 @@ class Output {
   int files_written() const { return static_cast<int>(files_.size()); }
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   OutputSettings settings_;
   std::vector<std::pair<double, std::string>> files_;  // time, particle file name
   std::vector<std::pair<double, std::string>> grid_files_;

@@ -15,6 +15,9 @@ template <int Dim>
 class Model;
 
 template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
+template <int Dim>
 class Probe {
  public:
   // Throws InputError when the model has no particle with that id; takes the first sample now.
@@ -28,6 +31,8 @@ class Probe {
   std::size_t samples() const { return times_.size(); }
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   std::string name_;
   int id_;
   std::vector<Field> fields_;

@@ -125,6 +125,7 @@ const std::vector<ApiSection>& api_sections() {
       {"Building a model: bodies, contact, fixities, probes", model_building_functions()},
       {"Runs and phases: initial stresses and shaking", phase_functions()},
       {"Output: ParaView files, probe histories, plots", output_functions()},
+      {"Checkpoints and restarts", checkpoint_functions()},
       {"Bodies", body_functions()},
       {"Probes", probe_functions()},
       {"Materials", material_functions()},

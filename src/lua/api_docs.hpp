@@ -26,7 +26,8 @@ std::span<const Function> session_functions();  // mpm.param, mpm.version, mpm.o
 std::span<const Function> help_functions();
 std::span<const Function> lem_functions();
 std::span<const Function> strength_reduction_functions();
-std::span<const Function> library_functions();  // lua/seismpm.lua
+std::span<const Function> checkpoint_functions();  // m:checkpoint, mpm.restart
+std::span<const Function> library_functions();     // lua/seismpm.lua
 
 struct ApiSection {
   const char* title;

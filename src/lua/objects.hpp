@@ -109,6 +109,7 @@ void open_plot(lua_State* L);
 void open_library_support(lua_State* L);
 void open_lem(lua_State* L);
 void open_strength_reduction(lua_State* L);
+void open_checkpoint(lua_State* L);
 
 // A Lua function that a run calls every `every` seconds of simulated time and at its end
 // (m:run{ every, call }, m:dynamic_phase{ every, call }); the run stops when it returns true. Holds a

@@ -25,6 +25,11 @@ const Key kOutputKeys[] = {
     arg::boolean("at_run_end", true,
                  "a file at the end of each run too (false: a script that runs in short chunks then only writes "
                  "every `every` seconds)"),
+    arg::number("checkpoint_every", "s",
+                "wall-clock time between checkpoints written during runs to dir/checkpoint.chk (mpm.restart reads "
+                "them)")
+        .in(above(0))
+        .shown("none"),
 };
 const Key kPlotKeys[] = {
     arg::names("quantities", "particle fields of the probes, one picture each").def_text("ux|uy"),
@@ -55,6 +60,8 @@ int model_output(lua_State* L) {
   if (auto pe = a.optional_number("probe_every")) h.simulation.set_probe_every(*pe);
   h.simulation.set_output(s, at_run_end);  // writes the state as it is now
   allow_writes_under(L, s.dir);            // the script's own files go there too
+  if (const auto every = a.optional_number("checkpoint_every"))
+    h.simulation.set_periodic_checkpoint(s.dir + "/checkpoint.chk", *every);
   return 0;
 }
 
@@ -95,7 +102,8 @@ const Function kOutputFunctions[] = {
     {"model:output", &guarded<model_output>, nullptr, kOutputKeys,
      "Writes ParaView files into dir: particles_NNNNNN.vtu now, every `every` seconds of simulated time and at the "
      "end of each run, listed with their times in particles.pvd (open that one in ParaView); probes.csv with every "
-     "field of every probe.",
+     "field of every probe. With checkpoint_every, a checkpoint dir/checkpoint.chk during runs whenever that many "
+     "seconds of wall time have passed (the previous one stays valid until the new one replaces it).",
      "m:output{ dir = \"out/slope\", every = 0.1, probe_every = 0.01 }"},
     {"model:write",
      &guarded<model_write>,

@@ -17,7 +17,9 @@ const GravityPhaseSettings kGravity;  // the run layer's defaults
 const Key kEvery = arg::number("every", "s", "interval of simulated time between calls (with call)").in(above(0));
 const Key kCall = arg::function("call", "function(m) ... end, called every `every` s and at the end (with every)");
 const Key kRunKeys[] = {
-    arg::number("duration", "s", "simulated time to run").in(above(0)).required(),
+    arg::number("duration", "s", "simulated time to run")
+        .in(above(0))
+        .shown("required, except after mpm.restart to finish the interrupted run"),
     arg::number("damping", "", "local damping coefficient for this and later runs")
         .in(closed_open(0, 1))
         .shown("unchanged (0 at first)"),
@@ -78,18 +80,6 @@ int model_step(lua_State* L) {
   return 0;
 }
 
-int model_run(lua_State* L) {
-  const auto held = held_handle(L);
-  ModelHandle& h = *held;
-  const Args a(L, 2, kRunKeys);
-  const double duration = a.number("duration");
-  const PeriodicCall call(a);  // read first: a bad call leaves the damping as it was
-  refuse_inside_a_run(L, h, "step the model");
-  if (const auto damping = a.optional_number("damping")) h.simulation.set_damping(*damping);
-  run_in_session(L, h, [&](Simulation<2>& sim) { sim.run(duration, call.run_call(L, h.model)); });
-  return 0;
-}
-
 void push_result(lua_State* L, const GravityPhaseResult& r) {
   lua_createtable(L, 0, 4);
   lua_pushnumber(L, r.time);
@@ -100,6 +90,37 @@ void push_result(lua_State* L, const GravityPhaseResult& r) {
   lua_setfield(L, -2, "unbalanced");
   lua_pushnumber(L, r.energy_ratio);
   lua_setfield(L, -2, "kinetic");
+}
+
+// m:run{} after mpm.restart: the interrupted run, finished; a gravity phase returns its result.
+int finish_interrupted_run(lua_State* L, ModelHandle& h, const Args& a, const PeriodicCall& call) {
+  if (!h.simulation.has_interrupted_run())
+    throw Error(
+        "key 'duration' must be a number, got nil (only a model restored from a checkpoint written during "
+        "a run, by mpm.restart, finishes that run with m:run{})");
+  if (a.has("damping")) throw Error("key 'damping': the interrupted run goes on with its own damping");
+  const double every = h.simulation.interrupted_call_every();
+  if (every > 0.0 && call.every <= 0.0)
+    throw Error("the interrupted run called a function every " + number_text(every) +
+                " s, which a checkpoint cannot hold: give it again, m:run{ every = " + number_text(every) +
+                ", call = f }");
+  const ResumedRun r = run_in_session(L, h, [&](Simulation<2>& sim) { return sim.resume(call.run_call(L, h.model)); });
+  if (!r.gravity) return 0;
+  push_result(L, *r.gravity);
+  return 1;
+}
+
+int model_run(lua_State* L) {
+  const auto held = held_handle(L);
+  ModelHandle& h = *held;
+  const Args a(L, 2, kRunKeys);
+  const PeriodicCall call(a);  // read first: a bad call leaves the damping as it was
+  refuse_inside_a_run(L, h, "step the model");
+  if (!a.has("duration")) return finish_interrupted_run(L, h, a, call);
+  const double duration = a.number("duration");
+  if (const auto damping = a.optional_number("damping")) h.simulation.set_damping(*damping);
+  run_in_session(L, h, [&](Simulation<2>& sim) { sim.run(duration, call.run_call(L, h.model)); });
+  return 0;
 }
 
 // m:gravity_phase{ damping = 0.7, tolerance = 0.005, max_time = 10, k0 } -> { time, steps, unbalanced, kinetic }
@@ -149,7 +170,10 @@ const Function kPhases[] = {
      "of simulated time (hit exactly) and at the end of the run, between steps: to sample or print something, or to "
      "end the run early by returning true, or to change a friction (m:set_friction) or a velocity "
      "(b:set_velocity); it may not step the model itself, nor add bodies, contacts, fixities, probes or an "
-     "output. Ctrl-C stops at the next step boundary with the model intact.",
+     "output. Ctrl-C stops at the next step boundary with the model intact. After mpm.restart from a checkpoint "
+     "written during a run, m:run{} (no duration) finishes that run as it would have gone on: a dynamic phase or "
+     "run to its end, a gravity phase to equilibrium with the reset at its end (it then returns the phase's result "
+     "table); give every and call again when the run had them. A run or phase started instead drops it.",
      "m:run{ duration = 60, every = 1, call = function(m) return m:energy().kinetic < 1 end }"},
     {"model:gravity_phase", &guarded<model_gravity_phase>, nullptr, kGravityKeys,
      "The initial-stress phase: self-weight with rigid bodies at rest and local damping (F_damp = -damping "

@@ -139,6 +139,7 @@ Runtime::Runtime(Session& session, const std::vector<std::string>& library_dirs)
   open_plot(L_);
   open_lem(L_);
   open_strength_reduction(L_);
+  open_checkpoint(L_);
   open_help(L_);
   open_library_support(L_);
   register_functions(L_, kSession);

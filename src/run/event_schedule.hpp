@@ -15,6 +15,9 @@
 
 namespace seismpm {
 
+template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
 class EventSchedule {
  public:
   static constexpr double kTolerance = 1e-9;  // relative to the interval of the event's stream
@@ -57,6 +60,8 @@ class EventSchedule {
   }
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   static constexpr double kInfinity = std::numeric_limits<double>::infinity();
   struct Entry {
     Spacing spacing;

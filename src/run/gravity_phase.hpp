@@ -27,6 +27,9 @@ struct GravityPhaseResult {
 // force, and the kinetic energy relative to its peak in the phase (at least 1e-3 of the elastic strain
 // energy, so a body set in equilibrium by K0 does not chase round-off), both below the tolerance.
 template <int Dim>
+class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
+
+template <int Dim>
 class EquilibriumMonitor {
  public:
   explicit EquilibriumMonitor(double tolerance) : tolerance_(tolerance) {}
@@ -42,6 +45,8 @@ class EquilibriumMonitor {
   double peak_energy() const { return peak_energy_; }
 
  private:
+  template <int>
+  friend class CheckpointAccess;
   static constexpr int kMinSteps = 10;  // the first steps of a body at rest prove nothing
   double tolerance_;
   double force_ratio_ = 1.0, energy_ratio_ = 1.0, peak_energy_ = 0.0;

@@ -1,9 +1,11 @@
 #include "simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
+#include "checkpoint.hpp"
 #include "core/error.hpp"
 
 namespace seismpm {
@@ -19,20 +21,24 @@ struct FlagScope {
   bool& flag;
 };
 
-// A run's part of the schedule (its end, its call's times), removed however the run ends.
+// A run's part of the schedule (its end, its call's times), removed however the run ends. A resumed
+// run brings its call's stream along; a new one gets its stream here.
 struct RunScope {
-  RunScope(EventSchedule& s, double start, double duration, const RunCall* run_call) : schedule(s) {
+  RunScope(EventSchedule& s, double start, double duration, EventSchedule::Stream& run_call, const RunCall* call)
+      : schedule(s), stream(run_call) {
     schedule.begin_run(start, duration);
-    if (run_call && run_call->active()) call = schedule.add(EventSchedule::Spacing::FromStart, run_call->every, start);
+    if (stream < 0 && call && call->active())
+      stream = schedule.add(EventSchedule::Spacing::FromStart, call->every, start);
   }
   ~RunScope() {
-    if (call >= 0) schedule.remove(call);
+    if (stream >= 0) schedule.remove(stream);
+    stream = -1;
     schedule.end_run();
   }
   RunScope(const RunScope&) = delete;
   RunScope& operator=(const RunScope&) = delete;
   EventSchedule& schedule;
-  EventSchedule::Stream call = -1;
+  EventSchedule::Stream& stream;
 };
 
 }  // namespace
@@ -118,6 +124,7 @@ RunEnd Simulation<Dim>::run(double duration, const RunCall& call) {
 template <int Dim>
 void Simulation<Dim>::step(long n) {
   RunSpec spec{std::numeric_limits<double>::infinity(), n, false};
+  spec.kind = RunKind::Steps;
   run_for(spec);
 }
 
@@ -127,24 +134,35 @@ GravityPhaseResult Simulation<Dim>::gravity_phase(const GravityPhaseSettings& g)
   begin_phase("gravity", false);  // rigid bodies at rest
   set_damping(g.damping);
   if (g.k0 > 0.0) set_k0_stresses(model_, g.k0);
-  EquilibriumMonitor<Dim> equilibrium(g.tolerance);
-  RunSpec spec{g.max_time};
-  spec.done = [&] {
-    equilibrium.update(model_);
-    return equilibrium.reached();
-  };
-  spec.extra = [&] { return equilibrium_text(equilibrium); };
-  const double t0 = model_.time();
-  const long s0 = model_.steps();
+  gravity_.emplace(GravityRun{g, model_.time(), model_.steps(), EquilibriumMonitor<Dim>(g.tolerance)});
   model_.set_balance_measure(true);
+  return run_gravity_phase(nullptr);
+}
+
+// The gravity phase's run (new, or resumed from a checkpoint) and its end: the equilibrium check and
+// the reset of displacements and strains.
+template <int Dim>
+GravityPhaseResult Simulation<Dim>::run_gravity_phase(const ActiveRun* resumed) {
+  RunSpec spec{gravity_->settings.max_time};
+  spec.kind = RunKind::Gravity;
+  spec.done = [this] {
+    gravity_->equilibrium.update(model_);
+    return gravity_->equilibrium.reached();
+  };
+  spec.extra = [this] { return equilibrium_text(gravity_->equilibrium); };
   RunEnd how = RunEnd::Completed;
   try {
-    how = run_for(spec);
+    how = run_for(spec, resumed);
   } catch (...) {
     model_.set_balance_measure(false);
+    gravity_.reset();
     throw;
   }
   model_.set_balance_measure(false);
+  const GravityRun phase = std::move(*gravity_);
+  gravity_.reset();
+  const GravityPhaseSettings& g = phase.settings;
+  const EquilibriumMonitor<Dim>& equilibrium = phase.equilibrium;
   if (how != RunEnd::Reached) {
     std::ostringstream os;
     os << "no static equilibrium within max_time = " << g.max_time << " s: out-of-balance force "
@@ -157,8 +175,8 @@ GravityPhaseResult Simulation<Dim>::gravity_phase(const GravityPhaseSettings& g)
   }
   // Displacements and strains start from zero in the next phase; stresses and plastic state are kept.
   model_.particles().reset_kinematics();
-  const GravityPhaseResult result{model_.time() - t0, model_.steps() - s0, equilibrium.force_ratio(),
-                                  equilibrium.energy_ratio()};
+  const GravityPhaseResult result{model_.time() - phase.start_time, model_.steps() - phase.start_steps,
+                                  equilibrium.force_ratio(), equilibrium.energy_ratio()};
   if (progress_mode_ != Progress::Mode::Quiet)
     std::fprintf(stderr, "gravity phase: equilibrium after %.4g s (%ld steps): %s\n", result.time, result.steps,
                  equilibrium_text(equilibrium).c_str());
@@ -170,12 +188,16 @@ RunEnd Simulation<Dim>::dynamic_phase(double duration, double damping, const Run
   if (model_.particles().size() == 0) throw InputError("the model has no particles");
   begin_phase("dynamic", true);  // histories start now
   set_damping(damping);
-  return run(duration, call);
+  RunSpec spec{duration};
+  spec.call = &call;
+  spec.kind = RunKind::Dynamic;
+  return run_for(spec);
 }
 
 template <int Dim>
 void Simulation<Dim>::begin_phase(const char* name, bool rigid_bodies_move) {
   if (running_) throw std::logic_error("a run's call may not start a phase");
+  drop_interrupted_run();
   phase_ = name;
   model_.begin_phase(rigid_bodies_move);
 }
@@ -186,22 +208,27 @@ void Simulation<Dim>::begin_phase(const char* name, bool rigid_bodies_move) {
 // the schedule on the way: probe samples, outputs, the run's call. The end of the run is sampled and,
 // for runs and phases, on file.
 template <int Dim>
-RunEnd Simulation<Dim>::run_for(const RunSpec& spec) {
+RunEnd Simulation<Dim>::run_for(const RunSpec& spec, const ActiveRun* resumed) {
   if (running_) throw std::logic_error("a run's call may not step the model");
   if (spec.call && spec.call->active() && !spec.call->function) throw InputError("run: a call without a function");
+  if (!resumed) drop_interrupted_run();
   FlagScope running(running_);
   Progress progress(stderr, progress_mode_);
-  const double start = model_.time();
-  RunScope scope(schedule_, start, spec.duration, spec.call);
-  progress.start(phase_, start, schedule_.run_end(), model_.particles().size(), model_.steps(),
+  active_ =
+      resumed ? *resumed : ActiveRun{spec.kind, model_.time(), spec.duration, spec.max_steps, 0, spec.final_output, -1};
+  RunScope scope(schedule_, active_.start, active_.duration, active_.call, spec.call);
+  progress.start(phase_, model_.time(), schedule_.run_end(), model_.particles().size(), model_.steps(),
                  static_cast<bool>(spec.done));
   RunEnd how = RunEnd::Completed;
   try {
-    for (long taken = 0; !schedule_.run_over(model_.time()) && taken < spec.max_steps; ++taken) {
+    while (!schedule_.run_over(model_.time()) && active_.taken < active_.max_steps) {
       stop_if_interrupted(progress);
       model_.step(schedule_.next_time() - model_.time());
-      how = after_step(spec, scope.call, progress);
+      ++active_.taken;
+      how = after_step(spec, active_.call, progress);
       if (how != RunEnd::Completed) break;
+      // Only while the run goes on (a restart takes it up from here); after its last step it is over.
+      if (!schedule_.run_over(model_.time()) && active_.taken < active_.max_steps) checkpoint_if_due();
     }
   } catch (const SimulationError&) {
     // The files written so far stay as they are: valid, up to the last output time.
@@ -248,6 +275,83 @@ void Simulation<Dim>::stop_if_interrupted(Progress& progress) const {
   std::ostringstream os;
   os << "interrupted (Ctrl-C) at t = " << model_.time() << " s, step " << model_.steps() << "; the model is intact";
   throw RunInterrupted(os.str());
+}
+
+// --- checkpoints ---
+
+template <int Dim>
+void Simulation<Dim>::set_periodic_checkpoint(const std::string& path, double every, std::function<bool()> due) {
+  if (!(every >= 0.0 && std::isfinite(every))) throw InputError("checkpoint_every must be >= 0 (s of wall time)");
+  checkpoint_path_ = path;
+  checkpoint_every_ = every;
+  checkpoint_due_ = std::move(due);
+  last_checkpoint_ = std::chrono::steady_clock::now();
+}
+
+template <int Dim>
+void Simulation<Dim>::checkpoint_if_due() {
+  if (checkpoint_path_.empty() || (checkpoint_every_ <= 0.0 && !checkpoint_due_)) return;
+  const auto now = std::chrono::steady_clock::now();
+  const bool due = checkpoint_due_ ? checkpoint_due_()
+                                   : std::chrono::duration<double>(now - last_checkpoint_).count() >= checkpoint_every_;
+  if (!due) return;
+  write_checkpoint(*this, checkpoint_path_);
+  last_checkpoint_ = std::chrono::steady_clock::now();
+}
+
+template <int Dim>
+std::optional<RunKind> Simulation<Dim>::interrupted_run() const {
+  if (!interrupted_) return std::nullopt;
+  return interrupted_->kind;
+}
+
+template <int Dim>
+double Simulation<Dim>::interrupted_call_every() const {
+  return interrupted_ && interrupted_->call >= 0 ? schedule_.every(interrupted_->call) : 0.0;
+}
+
+template <int Dim>
+void Simulation<Dim>::drop_interrupted_run() {
+  if (!interrupted_) return;
+  if (interrupted_->call >= 0) schedule_.remove(interrupted_->call);
+  schedule_.end_run();
+  if (interrupted_->kind == RunKind::Gravity) {
+    gravity_.reset();
+    model_.set_balance_measure(false);
+  }
+  interrupted_.reset();
+}
+
+template <int Dim>
+ResumedRun Simulation<Dim>::resume(const RunCall& call) {
+  if (running_) throw std::logic_error("a run's call may not step the model");
+  if (!interrupted_)
+    throw InputError(
+        "there is no interrupted run to finish: the model was not restored from a checkpoint written "
+        "during a run, or that run was finished or dropped (give a duration)");
+  const double every = interrupted_call_every();
+  if (every > 0.0 && !call.active()) {
+    std::ostringstream os;
+    os << "the interrupted run called a function every " << every << " s; give the call again (every = " << every
+       << ")";
+    throw InputError(os.str());
+  }
+  if (every == 0.0 && call.active()) throw InputError("the interrupted run had no call; finish it without one");
+  if (every > 0.0 && call.every != every) {
+    std::ostringstream os;
+    os << "the interrupted run called its function every " << every << " s, not every " << call.every << " s";
+    throw InputError(os.str());
+  }
+  const ActiveRun r = *interrupted_;
+  interrupted_.reset();
+  if (r.kind == RunKind::Gravity) {
+    const GravityPhaseResult g = run_gravity_phase(&r);
+    return {r.kind, RunEnd::Reached, g};
+  }
+  RunSpec spec{r.duration, r.max_steps, r.final_output};
+  spec.call = &call;
+  spec.kind = r.kind;
+  return {r.kind, run_for(spec, &r), std::nullopt};
 }
 
 template class Simulation<2>;

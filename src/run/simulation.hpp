@@ -5,9 +5,12 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -36,6 +39,24 @@ enum class RunEnd {
   Reached,    // its end criterion was met (the gravity phase: equilibrium)
   ByCall,     // its call returned true
 };
+
+// What a run is: a checkpoint written during one records it, and resume() after a restore finishes it.
+enum class RunKind : std::uint8_t {
+  Run,      // a duration in the current phase (m:run)
+  Steps,    // a number of steps (m:step)
+  Gravity,  // a gravity phase: to equilibrium, then the reset of displacements
+  Dynamic,  // a dynamic phase: its duration
+};
+
+// What resume() finished: how the run ended and, for a gravity phase, its result.
+struct ResumedRun {
+  RunKind kind;
+  RunEnd how;
+  std::optional<GravityPhaseResult> gravity;
+};
+
+template <int Dim>
+class CheckpointAccess;
 
 // A run stopped by its interrupt flag (Ctrl-C) before a step; the model is intact, as after any step.
 class RunInterrupted : public std::runtime_error {
@@ -89,7 +110,28 @@ class Simulation {
   // Shaking: rigid bodies follow their histories, read at the phase time, which starts now.
   RunEnd dynamic_phase(double duration, double damping, const RunCall& call = {});
 
+  // --- checkpoints (written and read by src/run/checkpoint.hpp) ---
+  // During runs, after a step, a checkpoint to `path` once `every` s of wall time have passed since the
+  // last one (or since this call); `due`, when given, decides instead (a test's own rule). every = 0
+  // and no `due`: none.
+  void set_periodic_checkpoint(const std::string& path, double every, std::function<bool()> due = {});
+  const std::string& checkpoint_path() const { return checkpoint_path_; }
+  double checkpoint_every() const { return checkpoint_every_; }
+  // Restored from a checkpoint written during a run: that run, not finished yet. It is dropped when
+  // another run or phase starts.
+  bool has_interrupted_run() const { return interrupted_.has_value(); }
+  std::optional<RunKind> interrupted_run() const;
+  // The interrupted run's call interval (s; 0: it had no call).
+  double interrupted_call_every() const;
+  // Finishes the interrupted run the way it would have gone on: to its end time or its number of steps,
+  // a gravity phase to equilibrium (or its max_time error) with the reset at its end, landing on the
+  // same events. A run that had a call needs it again, with the same interval. Throws InputError
+  // without an interrupted run.
+  ResumedRun resume(const RunCall& call = {});
+
  private:
+  template <int>
+  friend class CheckpointAccess;
   // One run: up to `duration` s or `max_steps` steps, or until `done()` says so after a step.
   struct RunSpec {
     double duration;
@@ -98,8 +140,29 @@ class Simulation {
     std::function<bool()> done = {};          // the end criterion; none: the run ends at its duration
     std::function<std::string()> extra = {};  // more text for the progress line
     const RunCall* call = nullptr;
+    RunKind kind = RunKind::Run;
   };
-  RunEnd run_for(const RunSpec& spec);
+  // The run in progress, as far as it has come (what a checkpoint written during it saves).
+  struct ActiveRun {
+    RunKind kind = RunKind::Run;
+    double start = 0.0, duration = 0.0;
+    long max_steps = std::numeric_limits<long>::max();
+    long taken = 0;  // steps so far
+    bool final_output = true;
+    EventSchedule::Stream call = -1;  // its call's stream in the schedule (-1: none)
+  };
+  // The gravity phase in progress: its settings, where it started and its equilibrium monitor.
+  struct GravityRun {
+    GravityPhaseSettings settings;
+    double start_time = 0.0;
+    long start_steps = 0;
+    EquilibriumMonitor<Dim> equilibrium;
+  };
+  // `resumed`: an interrupted run to go on with instead of a new one.
+  RunEnd run_for(const RunSpec& spec, const ActiveRun* resumed = nullptr);
+  GravityPhaseResult run_gravity_phase(const ActiveRun* resumed);
+  void drop_interrupted_run();
+  void checkpoint_if_due();
   RunEnd after_step(const RunSpec& spec, EventSchedule::Stream call, Progress& progress);
   void finish_run(const RunSpec& spec, RunEnd how, Progress& progress);
   void stop_if_interrupted(Progress& progress) const;
@@ -119,6 +182,13 @@ class Simulation {
   Progress::Mode progress_mode_ = Progress::Mode::Quiet;
   const std::atomic<bool>* interrupt_ = nullptr;
   bool running_ = false;
+  ActiveRun active_;                      // while running_
+  std::optional<GravityRun> gravity_;     // while a gravity phase runs, or is interrupted
+  std::optional<ActiveRun> interrupted_;  // restored from a checkpoint written during a run
+  std::string checkpoint_path_;
+  double checkpoint_every_ = 0.0;  // s of wall time
+  std::function<bool()> checkpoint_due_;
+  std::chrono::steady_clock::time_point last_checkpoint_;
 };
 
 extern template class Simulation<2>;

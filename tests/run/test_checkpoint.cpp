@@ -1,0 +1,242 @@
+// Checkpoints: a run restored from one ends bit for bit where the uninterrupted run ends (contact, a
+// rigid body following a record, Mohr-Coulomb plasticity, probes, outputs, a gravity phase interrupted
+// mid-way), function histories must be given again, and the output directory's lists match the restored
+// state.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "materials/mohr_coulomb.hpp"
+#include "run/checkpoint.hpp"
+#include "run/simulation.hpp"
+
+using namespace seismpm;
+
+namespace {
+
+std::string temp_dir(const char* name) {
+  const auto dir = (std::filesystem::temp_directory_path() / name).string();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string read_text(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A Mohr-Coulomb slope on a rigid base shaken by a tabulated record, in frictional contact, with a fixity,
+// two probes and an output directory. `function_base`: the base follows a function history instead.
+std::unique_ptr<Simulation<2>> shaken_slope(const std::string& dir, bool function_base = false) {
+  ModelSettings<2> s;
+  s.lower = Vec<2>(-0.2, -0.1);
+  s.upper = Vec<2>(1.4, 0.6);
+  s.cell = 0.05;
+  s.gravity = Vec<2>(0.0, -9.81);
+  auto sim = std::make_unique<Simulation<2>>(s);
+  auto& m = sim->model();
+  MohrCoulombParameters p;
+  p.density = 1700;
+  p.young = 5e6;
+  p.poisson = 0.3;
+  p.cohesion = 3000;
+  p.friction = 30;
+  const int soil = m.add_material(std::make_shared<MohrCoulomb>(p), "soil");
+  const int body = m.add_body("soil", 2);
+  m.fill(body, soil, Vec<2>(0, 0), Vec<2>(1, 0.45), [](const Vec<2>& x) { return x[1] < 0.45 - 0.5 * x[0]; });
+  std::array<std::shared_ptr<const History>, 2> v;
+  if (function_base)
+    v[0] = std::make_shared<FunctionHistory>([](double t) { return 0.2 * t; }, "a function");
+  else
+    v[0] = std::make_shared<TableHistory>(std::vector<double>{0, 0.1, 0.3, 0.5}, std::vector<double>{0, 0.2, -0.2, 0});
+  v[1] = std::make_shared<ConstantHistory>(0.0);
+  const int base = m.add_rigid_body("base", 2, 2000, v);
+  m.fill_box(base, -1, Vec<2>(-0.15, -0.05), Vec<2>(1.15, 0.0));
+  m.add_contact(body, base, 0.5);
+  m.grid().fix(Side::Top, FixY);
+  sim->add_probe("crest", static_cast<int>(m.particles().size() / 2), 0.01);
+  sim->add_probe("toe", 3, 0.0);
+  OutputSettings out;
+  out.dir = dir;
+  out.every = 0.05;
+  sim->set_output(out);
+  return sim;
+}
+
+// Every particle field, and the clock, bit for bit.
+void require_same_state(const Simulation<2>& a, const Simulation<2>& b) {
+  const auto& pa = a.model().particles();
+  const auto& pb = b.model().particles();
+  REQUIRE(pa.size() == pb.size());
+  REQUIRE(a.model().steps() == b.model().steps());
+  CHECK(a.model().time() == b.model().time());
+  int member = 0;
+  std::vector<int> differing;
+  std::vector<std::size_t> sizes_a, sizes_b;
+  std::vector<std::string> bytes_a, bytes_b;
+  pa.for_each_member(
+      [&](const auto& v) { bytes_a.emplace_back(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0])); });
+  pb.for_each_member(
+      [&](const auto& v) { bytes_b.emplace_back(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(v[0])); });
+  REQUIRE(bytes_a.size() == bytes_b.size());
+  for (std::size_t k = 0; k < bytes_a.size(); ++k, ++member)
+    if (bytes_a[k] != bytes_b[k]) differing.push_back(member);
+  CAPTURE(differing);  // the members in Particles::for_each_member's order
+  CHECK(differing.empty());
+  for (std::size_t k = 0; k < a.probes().size(); ++k) {
+    CHECK(a.probes()[k]->times() == b.probes()[k]->times());
+    for (Field f : particle_fields(2)) CHECK(a.probes()[k]->series(f) == b.probes()[k]->series(f));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("checkpoint: a dynamic phase restored mid-way ends bit for bit as the uninterrupted one",
+          "[run][checkpoint]") {
+  const std::string dir_a = temp_dir("seismpm_ckpt_a"), dir_b = temp_dir("seismpm_ckpt_b");
+  const std::string file = dir_b + "/mid.chk";
+  GravityPhaseSettings g;
+  g.max_time = 3;
+  auto a = shaken_slope(dir_a);
+  a->gravity_phase(g);
+  a->dynamic_phase(0.3, 0.0, RunCall{0.12, [] { return false; }});  // its call's times are landed on too
+
+  {
+    auto b = shaken_slope(dir_b);
+    b->gravity_phase(g);
+    // The periodic checkpoint once, after the step that lands on the call at t = 0.12 s of the phase; the
+    // run goes on (and writes files after the checkpoint that the restore must drop from the lists).
+    bool written = false;
+    b->set_periodic_checkpoint(file, 0.0, [&] {
+      if (written || b->model().phase_time() < 0.12 - 1e-9) return false;
+      written = true;
+      return true;
+    });
+    const RunCall call{0.12, [] { return false; }};
+    b->dynamic_phase(0.3, 0.0, call);
+    REQUIRE(written);
+  }
+  const CheckpointReader checkpoint(file);
+  Simulation<2> c(checkpoint_settings<2>(checkpoint));
+  restore_checkpoint(checkpoint, c);
+  REQUIRE(c.interrupted_run() == RunKind::Dynamic);
+  CHECK(c.phase() == "dynamic");
+  CHECK(c.model().phase_time() > 0.119);
+  CHECK(c.model().phase_time() < 0.121);
+  // The restored directory lists only what was written up to the checkpoint: the uninterrupted run's
+  // list holds more.
+  const auto entries = [](const std::string& pvd) {
+    const std::string text = read_text(pvd);
+    int n = 0;
+    for (std::size_t at = text.find("<DataSet"); at != std::string::npos; at = text.find("<DataSet", at + 1)) ++n;
+    return n;
+  };
+  CHECK(entries(dir_b + "/particles.pvd") + 3 < entries(dir_a + "/particles.pvd"));
+  CHECK(read_text(dir_b + "/probes.csv").size() < read_text(dir_a + "/probes.csv").size());
+
+  SECTION("without its call again, the run refuses to go on") {
+    CHECK_THROWS_WITH(c.resume(), Catch::Contains("every 0.12 s"));
+  }
+  SECTION("finished with its call, it ends where the uninterrupted run ends") {
+    const RunCall call{0.12, [] { return false; }};
+    const ResumedRun r = c.resume(call);
+    CHECK(r.kind == RunKind::Dynamic);
+    CHECK(r.how == RunEnd::Completed);
+    CHECK_FALSE(c.has_interrupted_run());
+    require_same_state(*a, c);
+    for (const char* f : {"particles.pvd", "rigid.pvd", "probes.csv", "reactions.csv"})
+      CHECK(read_text(dir_a + "/" + f) == read_text(dir_b + "/" + f));
+    // And a phase after it, as in the uninterrupted script.
+    a->run(0.05);
+    c.run(0.05);
+    require_same_state(*a, c);
+  }
+}
+
+TEST_CASE("checkpoint: a gravity phase interrupted mid-way goes on to the same equilibrium and reset",
+          "[run][checkpoint]") {
+  const std::string dir_a = temp_dir("seismpm_ckpt_ga"), dir_b = temp_dir("seismpm_ckpt_gb");
+  const std::string file = dir_b + "/gravity.chk";
+  GravityPhaseSettings g;
+  g.max_time = 3;
+  auto a = shaken_slope(dir_a);
+  const GravityPhaseResult ra = a->gravity_phase(g);
+  a->dynamic_phase(0.1, 0.0);
+  REQUIRE(ra.steps > 40);
+
+  {
+    auto b = shaken_slope(dir_b);
+    long steps = 0;
+    b->set_periodic_checkpoint(file, 0.0, [&] { return ++steps == 30; });  // after the 30th step only
+    b->gravity_phase(g);
+  }
+  const CheckpointReader checkpoint(file);
+  Simulation<2> c(checkpoint_settings<2>(checkpoint));
+  restore_checkpoint(checkpoint, c);
+  REQUIRE(c.interrupted_run() == RunKind::Gravity);
+  CHECK(c.model().steps() == 30);
+  const ResumedRun r = c.resume();
+  REQUIRE(r.gravity);
+  CHECK(r.gravity->steps == ra.steps);  // counted from the phase's own start
+  CHECK(r.gravity->force_ratio == ra.force_ratio);
+  CHECK(r.gravity->energy_ratio == ra.energy_ratio);
+  c.dynamic_phase(0.1, 0.0);
+  require_same_state(*a, c);
+}
+
+TEST_CASE("checkpoint: a checkpoint between phases, restored, and a new phase", "[run][checkpoint]") {
+  const std::string dir_a = temp_dir("seismpm_ckpt_pa"), dir_b = temp_dir("seismpm_ckpt_pb");
+  const std::string file = dir_b + "/between.chk";
+  auto a = shaken_slope(dir_a);
+  a->gravity_phase({});
+  a->dynamic_phase(0.1, 0.0);
+  {
+    auto b = shaken_slope(dir_b);
+    b->gravity_phase({});
+    write_checkpoint(*b, file);
+  }
+  const CheckpointReader checkpoint(file);
+  Simulation<2> c(checkpoint_settings<2>(checkpoint));
+  restore_checkpoint(checkpoint, c);
+  CHECK_FALSE(c.has_interrupted_run());
+  CHECK_THROWS_WITH(c.resume(), Catch::Contains("no interrupted run"));
+  // Written again from the restored simulation, the checkpoint is the same file, byte for byte.
+  write_checkpoint(c, dir_b + "/again.chk");
+  CHECK(read_text(dir_b + "/again.chk") == read_text(file));
+  c.dynamic_phase(0.1, 0.0);
+  require_same_state(*a, c);
+}
+
+TEST_CASE("checkpoint: a function history is named and must be given again", "[run][checkpoint][robustness]") {
+  const std::string dir = temp_dir("seismpm_ckpt_fn");
+  const std::string file = dir + "/fn.chk";
+  {
+    auto b = shaken_slope(dir, true);
+    write_checkpoint(*b, file);
+  }
+  const CheckpointReader checkpoint(file);
+  {
+    Simulation<2> c(checkpoint_settings<2>(checkpoint));
+    CHECK_THROWS_WITH(restore_checkpoint(checkpoint, c),
+                      Catch::Contains(file) && Catch::Contains("base.vx") && Catch::Contains("give it again"));
+  }
+  {
+    Simulation<2> c(checkpoint_settings<2>(checkpoint));
+    CHECK_THROWS_WITH(restore_checkpoint(checkpoint, c,
+                                         {{"bse.vx", std::make_shared<ConstantHistory>(1.0)},
+                                          {"base.vx", std::make_shared<ConstantHistory>(1.0)}}),
+                      Catch::Contains("'bse.vx' names no history") && Catch::Contains("base.vy"));
+  }
+  Simulation<2> c(checkpoint_settings<2>(checkpoint));
+  restore_checkpoint(checkpoint, c, {{"base.vx", std::make_shared<ConstantHistory>(0.25)}});
+  CHECK(c.model().rigid_motion(1).velocity[0]->at(3.0) == 0.25);
+  CHECK(c.model().rigid_motion(1).velocity[1]->at(3.0) == 0.0);  // the saved constant
+}
