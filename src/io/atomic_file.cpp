@@ -1,7 +1,10 @@
 #include "atomic_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -17,8 +20,13 @@ void ensure_directory(const std::string& dir) {
   if (access(dir.c_str(), W_OK) != 0) throw OutputError("the output directory " + dir + " is not writable");
 }
 
+std::string temporary_name(const std::string& path) {
+  static std::atomic<unsigned long> counter{0};
+  return path + ".tmp." + std::to_string(getpid()) + "." + std::to_string(counter++);
+}
+
 void write_file_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
+  const std::string tmp = temporary_name(path);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw OutputError("cannot write " + path + ": " + std::strerror(errno));
   const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
@@ -36,6 +44,26 @@ void commit_file(const std::string& temporary, const std::string& path) {
     std::remove(temporary.c_str());
     throw OutputError("cannot rename " + temporary + " to " + path + ": " + why);
   }
+}
+
+bool replace_file_tail(const std::string& path, std::uint64_t size, std::uint64_t offset, const std::string& text) {
+  const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat st{};
+  if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || static_cast<std::uint64_t>(st.st_size) != size || offset > size) {
+    close(fd);
+    return false;
+  }
+  const ssize_t n = pwrite(fd, text.data(), text.size(), static_cast<off_t>(offset));
+  const int err = errno;
+  bool ok = n == static_cast<ssize_t>(text.size());
+  if (ok && offset + text.size() < size) ok = ftruncate(fd, static_cast<off_t>(offset + text.size())) == 0;
+  if (!ok && ftruncate(fd, static_cast<off_t>(size)) != 0) {
+  }  // best effort: the rows written before stay whole
+  close(fd);
+  if (!ok)
+    throw OutputError("cannot write " + path + ": " + std::strerror(n < 0 ? err : ENOSPC) + " (disk full?)");
+  return true;
 }
 
 }  // namespace seismpm

@@ -1,29 +1,35 @@
 #include "csv_plot.hpp"
 
-#include <fstream>
+#include <cstdio>
 #include <sstream>
 
 #include "atomic_file.hpp"
 #include "core/error.hpp"
+#include "csv_table.hpp"
 #include "gnuplot.hpp"
+#include "text_lines.hpp"
 
 namespace seismpm {
 
 void plot_csv(const CsvPlot& p) {
-  std::ifstream in(p.csv);
-  if (!in) throw InputError("cannot plot: " + p.csv + " cannot be opened");
+  if (std::FILE* f = std::fopen(p.csv.c_str(), "rb"))
+    std::fclose(f);
+  else
+    throw InputError("cannot plot: " + p.csv + " cannot be opened");
+  TextLines in(p.csv);
   std::string header;
-  while (std::getline(in, header) && (header.empty() || header[0] == '#')) {
+  while (in.next(header) && (header.empty() || header[0] == '#')) {
   }  // '#' lines are comments, for gnuplot too
   std::vector<std::string> columns;
-  {
-    std::istringstream hs(header);
-    for (std::string c; std::getline(hs, c, ',');) columns.push_back(c);
+  try {
+    columns = split_csv_fields(header);
+  } catch (const InputError& e) {
+    throw InputError(in.where() + e.what());
   }
   auto column = [&](const std::string& name) {
     for (std::size_t c = 0; c < columns.size(); ++c)
       if (columns[c] == name) return c + 1;  // gnuplot counts from 1
-    throw InputError(p.csv + ":1: no column '" + name + "' (the header is: " + header + ")");
+    throw InputError(p.csv + ":" + std::to_string(in.number()) + ": no column '" + printable(name) + "' (the header is: " + printable(header, 200) + ")");
   };
   const std::size_t xc = column(p.x);
   if (p.y.empty()) throw InputError("cannot plot: no y columns given");

@@ -1,84 +1,122 @@
 #include "csv_table.hpp"
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <fstream>
-
 #include "core/error.hpp"
+#include "text_lines.hpp"
 
 namespace seismpm {
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\"");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\"");
-  return s.substr(b, e - b + 1);
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::size_t start = 0;
-  for (;;) {
-    const auto comma = line.find(',', start);
-    out.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
-    if (comma == std::string::npos) break;
-    start = comma + 1;
-  }
-  return out;
+std::string_view trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t") - b + 1);
 }
 
 }  // namespace
 
-CsvColumns read_csv_columns(const std::string& file, const std::vector<std::string>& names) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file + ": cannot open (" + std::strerror(errno) + ")");
-  std::string line;
-  int number = 0;
-  std::vector<int> index;
-  std::vector<std::string> header;
-  CsvColumns out;
-  out.columns.resize(names.size());
-  while (std::getline(in, line)) {
-    ++number;
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
-    const auto cells = split(line);
-    if (header.empty()) {
-      header = cells;
-      for (const auto& name : names) {
-        int found = -1;
-        for (std::size_t c = 0; c < header.size(); ++c)
-          if (header[c] == name) found = static_cast<int>(c);
-        if (found < 0) {
-          std::string have;
-          for (const auto& h : header) have += (have.empty() ? "" : ", ") + h;
-          throw InputError(file + ":" + std::to_string(number) + ": no column '" + name +
-                           "' in the header (columns: " + have + ")");
+std::string CsvColumn::describe() const { return number > 0 ? std::to_string(number) : "'" + name + "'"; }
+
+std::vector<std::string> split_csv_fields(std::string_view line) {
+  std::vector<std::string> out;
+  std::size_t k = 0;
+  for (;;) {
+    while (k < line.size() && (line[k] == ' ' || line[k] == '\t')) ++k;
+    std::string field;
+    if (k < line.size() && line[k] == '"') {
+      for (++k;; ++k) {
+        if (k >= line.size()) throw InputError("a quoted field is not closed (a line break inside quotes is not read)");
+        if (line[k] == '"') {
+          if (k + 1 < line.size() && line[k + 1] == '"') {
+            field += '"';
+            ++k;
+          } else {
+            ++k;
+            break;
+          }
+        } else {
+          field += line[k];
         }
-        index.push_back(found);
       }
-      continue;
+      while (k < line.size() && line[k] != ',') {
+        if (line[k] != ' ' && line[k] != '\t') throw InputError("text after a quoted field");
+        ++k;
+      }
+    } else {
+      const auto comma = line.find(',', k);
+      field = std::string(trim(line.substr(k, comma == std::string_view::npos ? std::string_view::npos : comma - k)));
+      k = comma == std::string_view::npos ? line.size() : comma;
     }
-    for (std::size_t k = 0; k < names.size(); ++k) {
+    out.push_back(std::move(field));
+    if (k >= line.size()) break;
+    ++k;  // the comma
+  }
+  return out;
+}
+
+std::string csv_field(std::string_view text) {
+  const bool quote = text.find_first_of(",\"\r\n") != std::string_view::npos ||
+                     (!text.empty() && (text.front() == ' ' || text.back() == ' ' || text.front() == '\t' ||
+                                        text.back() == '\t'));
+  if (!quote) return std::string(text);
+  std::string out = "\"";
+  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+CsvColumns read_csv_columns(const std::string& file, const std::vector<CsvColumn>& wanted) {
+  TextLines in(file);
+  std::string line;
+  std::vector<std::size_t> index;
+  bool header_read = false;
+  bool all_numbered = !wanted.empty();
+  for (const auto& c : wanted) all_numbered = all_numbered && c.number > 0;
+  CsvColumns out;
+  out.columns.resize(wanted.size());
+  while (in.next(line)) {
+    const std::string_view t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    std::vector<std::string> cells;
+    try {
+      cells = split_csv_fields(line);
+    } catch (const InputError& e) {
+      throw InputError(in.where() + e.what());
+    }
+    if (!header_read) {
+      header_read = true;
+      bool data = all_numbered;
+      double v;
+      for (const auto& c : wanted) {
+        index.push_back(c.number > 0 ? static_cast<std::size_t>(c.number - 1) : cells.size());
+        if (c.number > 0) {
+          data = data && index.back() < cells.size() && parse_number(cells[index.back()], v);
+          continue;
+        }
+        for (std::size_t k = 0; k < cells.size(); ++k)
+          if (cells[k] == c.name) index.back() = k;
+        if (index.back() == cells.size()) {
+          std::string have;
+          for (const auto& h : cells) have += (have.empty() ? "" : ", ") + h;
+          throw InputError(in.where() + "no column '" + printable(c.name) + "' in the header (columns: " +
+                           printable(have, 200) + ")");
+        }
+      }
+      if (!data) continue;  // a header line (or, with numbered columns, a line of names)
+    }
+    for (std::size_t k = 0; k < wanted.size(); ++k) {
       const std::size_t c = index[k];
       if (c >= cells.size() || cells[c].empty())
-        throw InputError(file + ":" + std::to_string(number) + ": column '" + names[k] + "' is missing");
-      char* end = nullptr;
-      errno = 0;
-      const double v = std::strtod(cells[c].c_str(), &end);
-      if (end == cells[c].c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-        throw InputError(file + ":" + std::to_string(number) + ": column '" + names[k] + "' is not a number ('" +
-                         cells[c] + "')");
+        throw InputError(in.where() + "column " + wanted[k].describe() + " is missing");
+      double v;
+      if (!parse_number(cells[c], v))
+        throw InputError(in.where() + "column " + wanted[k].describe() + " is not a number ('" + printable(cells[c]) +
+                         "')");
       out.columns[k].push_back(v);
     }
-    out.lines.push_back(number);
+    out.lines.push_back(in.number());
   }
-  if (header.empty()) throw InputError(file + ": empty file (no header line)");
-  if (out.lines.empty()) throw InputError(file + ":" + std::to_string(number) + ": no data rows after the header");
+  if (!header_read) throw InputError(file + ": empty file (no header line)");
+  if (out.lines.empty()) throw InputError(file + ":" + std::to_string(in.number()) + ": no data rows after the header");
   return out;
 }
 

@@ -5,10 +5,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "core/error.hpp"
+#include "text_lines.hpp"
 
 namespace seismpm {
 
@@ -16,17 +17,22 @@ namespace {
 
 std::string where(const std::string& file, int line) { return file + ":" + std::to_string(line) + ": "; }
 
-bool parse_number(const std::string& text, double& out) {
-  char* end = nullptr;
-  errno = 0;
-  out = std::strtod(text.c_str(), &end);
-  return end != text.c_str() && *end == '\0' && errno != ERANGE && std::isfinite(out);
-}
-
-std::ifstream open(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file + ": cannot open (" + std::strerror(errno) + ")");
-  return in;
+// Splits a line at white space (and, for column files, commas and semicolons); the rest of a line
+// after '#' is a comment there.
+std::vector<std::string_view> words(std::string_view line, bool columns) {
+  if (columns) line = line.substr(0, line.find('#'));
+  auto separator = [&](char c) {
+    return c == ' ' || c == '\t' || c == '\v' || c == '\f' || (columns && (c == ',' || c == ';'));
+  };
+  std::vector<std::string_view> out;
+  std::size_t k = 0;
+  while (k < line.size()) {
+    while (k < line.size() && separator(line[k])) ++k;
+    const std::size_t b = k;
+    while (k < line.size() && !separator(line[k])) ++k;
+    if (k > b) out.push_back(line.substr(b, k - b));
+  }
+  return out;
 }
 
 void check_times(const AccelerationRecord& r, const std::vector<int>& lines) {
@@ -47,70 +53,66 @@ std::vector<double> integrate(const std::vector<double>& t, const std::vector<do
 }  // namespace
 
 AccelerationRecord read_at2(const std::string& file) {
-  std::ifstream in = open(file);
+  TextLines in(file);
   AccelerationRecord r;
   r.source = file;
   std::string line;
-  int number = 0;
   for (int k = 0; k < 3; ++k)
-    if (!std::getline(in, line))
-      throw InputError(where(file, number + 1) + "AT2 header ends early (3 text lines, then NPTS= n, DT= dt SEC)");
-    else
-      ++number;
-  if (!std::getline(in, line)) throw InputError(where(file, 4) + "missing the line NPTS= n, DT= dt SEC");
-  ++number;
-  long npts = -1;
-  double dt = -1;
+    if (!in.next(line))
+      throw InputError(where(file, in.number() + 1) +
+                       "AT2 header ends early (3 text lines, then NPTS= n, DT= dt SEC)");
+  if (!in.next(line)) throw InputError(where(file, 4) + "missing the line NPTS= n, DT= dt SEC");
+  double npts = -1, dt = -1;  // read as numbers: an absurd count is named, not wrapped
   {
     std::string s = line;
     for (char& c : s)
       if (c == ',' || c == '=') c = ' ';
-    std::istringstream is(s);
-    for (std::string word; is >> word;) {
-      if (word == "NPTS")
-        is >> npts;
-      else if (word == "DT")
-        is >> dt;
+    const auto w = words(s, false);
+    for (std::size_t k = 0; k + 1 < w.size(); ++k) {
+      if (w[k] == "NPTS" && !parse_number(w[k + 1], npts)) npts = -1;
+      if (w[k] == "DT" && !parse_number(w[k + 1], dt)) dt = -1;
     }
   }
-  if (npts <= 1 || !(dt > 0.0) || !std::isfinite(dt))
-    throw InputError(where(file, 4) + "expected 'NPTS= n, DT= dt SEC' with n > 1 and dt > 0, got '" + line + "'");
-  r.a.reserve(npts);
-  while (std::getline(in, line)) {
-    ++number;
-    std::istringstream is(line);
-    for (std::string word; is >> word;) {
+  if (!(npts > 1) || npts != std::floor(npts) || !(dt > 0.0))
+    throw InputError(where(file, 4) + "expected 'NPTS= n, DT= dt SEC' with a whole n > 1 and dt > 0, got '" +
+                     printable(line) + "'");
+  // Each value takes at least two bytes (a digit and a separator): a count the file cannot hold is a
+  // broken header, refused before anything is allocated for it.
+  const double most = in.size() > 0 ? std::min<double>(kMaxRecordPoints, in.size() / 2.0 + 1) : kMaxRecordPoints;
+  if (npts > most) {
+    std::ostringstream os;
+    os.precision(15);
+    os << where(file, 4) << "NPTS= " << npts << " is more than "
+       << (in.size() > 0 && in.size() / 2.0 + 1 < kMaxRecordPoints
+               ? "a file of " + std::to_string(in.size()) + " bytes can hold"
+               : "the " + std::to_string(kMaxRecordPoints) + " points a record may have");
+    throw InputError(os.str());
+  }
+  r.a.reserve(static_cast<std::size_t>(npts));
+  while (in.next(line)) {
+    for (const auto word : words(line, false)) {
       double v;
-      if (!parse_number(word, v)) throw InputError(where(file, number) + "'" + word + "' is not a number");
+      if (!parse_number(word, v)) throw InputError(in.where() + "'" + printable(word) + "' is not a number");
       r.a.push_back(v * kStandardGravity);
     }
   }
-  if (static_cast<long>(r.a.size()) != npts)
-    throw InputError(where(file, number) + "the header says NPTS= " + std::to_string(npts) + " but the file holds " +
-                     std::to_string(r.a.size()) + " values");
+  if (r.a.size() != static_cast<std::size_t>(npts))
+    throw InputError(where(file, in.number()) + "the header says NPTS= " + std::to_string(static_cast<long>(npts)) +
+                     " but the file holds " + std::to_string(r.a.size()) + " values");
   r.t.resize(r.a.size());
   for (std::size_t k = 0; k < r.t.size(); ++k) r.t[k] = k * dt;
   return r;
 }
 
 AccelerationRecord read_acceleration_columns(const std::string& file, double to_si) {
-  std::ifstream in = open(file);
+  TextLines in(file);
   AccelerationRecord r;
   r.source = file;
   std::vector<int> lines;
   std::string line;
-  int number = 0;
   bool header_allowed = true;
-  while (std::getline(in, line)) {
-    ++number;
-    std::string s = line;
-    const auto hash = s.find('#');
-    if (hash != std::string::npos) s.erase(hash);
-    for (char& c : s)
-      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
-    std::istringstream is(s);
-    std::vector<std::string> cells;
-    for (std::string w; is >> w;) cells.push_back(w);
+  while (in.next(line)) {
+    const auto cells = words(line, true);
     if (cells.empty()) continue;
     double t, a;
     const bool numeric = cells.size() >= 2 && parse_number(cells[0], t) && parse_number(cells[1], a);
@@ -118,14 +120,16 @@ AccelerationRecord read_acceleration_columns(const std::string& file, double to_
       header_allowed = false;
       continue;
     }
-    if (cells.size() < 2) throw InputError(where(file, number) + "expected two columns: time, acceleration");
+    if (cells.size() < 2) throw InputError(in.where() + "expected two columns: time, acceleration");
     if (!numeric)
-      throw InputError(where(file, number) + "not a number: '" + (parse_number(cells[0], t) ? cells[1] : cells[0]) +
+      throw InputError(in.where() + "not a number: '" + printable(parse_number(cells[0], t) ? cells[1] : cells[0]) +
                        "'");
+    if (r.t.size() >= kMaxRecordPoints)
+      throw InputError(in.where() + "more than " + std::to_string(kMaxRecordPoints) + " points");
     header_allowed = false;
     r.t.push_back(t);
     r.a.push_back(a * to_si);
-    lines.push_back(number);
+    lines.push_back(in.number());
   }
   if (r.t.empty()) throw InputError(file + ": empty record (no time, acceleration rows)");
   check_times(r, lines);

@@ -3,12 +3,17 @@
 // Every error names the file and the line.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
 namespace seismpm {
 
 inline constexpr double kStandardGravity = 9.80665;  // m/s^2
+
+// The most points a record may have (about 1.6 GB for its time, acceleration, velocity and
+// displacement): a count beyond it is a broken file.
+inline constexpr std::size_t kMaxRecordPoints = 100'000'000;
 
 struct AccelerationRecord {
   std::vector<double> t, a;  // s, m/s^2

@@ -1,20 +1,45 @@
 #include "output.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <sstream>
 
 #include "atomic_file.hpp"
 #include "core/error.hpp"
+#include "csv_table.hpp"
+#include "csv_table.hpp"
 
 namespace seismpm {
 
 namespace {
+// The settings an Output refuses, checked before its directory is made and locked.
+const OutputSettings& check(const OutputSettings& s) {
+  if (!(s.every > 0.0)) throw InputError("output: every must be > 0 (s)");
+  if (s.arrays.empty()) throw InputError("output: no fields to write");
+  return s;
+}
+
+// Where the last row of `rows` (whole lines) starts.
+std::size_t last_row_start(const std::string& rows) {
+  if (rows.size() < 2) return 0;
+  const auto nl = rows.rfind('\n', rows.size() - 2);
+  return nl == std::string::npos ? 0 : nl + 1;
+}
+
 std::string numbered(const char* stem, int n) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%s_%06d.vtu", stem, n);
   return buf;
+}
+
+// Checks the settings and creates the directory, before the lock is taken in it.
+const std::string& checked_directory(const OutputSettings& s) {
+  if (!(s.every > 0.0)) throw InputError("output: every must be > 0 (s)");
+  if (s.arrays.empty()) throw InputError("output: no fields to write");
+  ensure_directory(s.dir);
+  return s.dir;
 }
 }  // namespace
 
@@ -30,22 +55,29 @@ std::string pvd_text(const std::vector<std::pair<double, std::string>>& files) {
 }
 
 template <int Dim>
-std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
+std::string probes_csv_header(const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
+  const auto fields = particle_fields(Dim);
+  std::string header = "time (s)";
+  for (const auto& p : probes)
+    for (Field f : fields) header += ',' + csv_field(std::string(p->name()) + '.' + std::string(field_name(f)));
+  return header + '\n';
+}
+
+template <int Dim>
+std::string probes_csv_rows(const std::vector<std::shared_ptr<Probe<Dim>>>& probes,
+                            const std::vector<std::size_t>& first) {
   const auto fields = particle_fields(Dim);
   std::ostringstream os;
   os.precision(10);
-  os << "time (s)";
-  for (const auto& p : probes)
-    for (Field f : fields) os << ',' << p->name() << '.' << field_name(f);
-  os << '\n';
   // Rows at every time any probe sampled; a probe without a sample then leaves its cells empty.
   std::map<double, std::vector<std::size_t>> rows;  // time -> sample index per probe (npos: none)
   for (std::size_t k = 0; k < probes.size(); ++k)
-    for (std::size_t s = 0; s < probes[k]->times().size(); ++s) {
+    for (std::size_t s = first[k]; s < probes[k]->times().size(); ++s) {
       auto& row = rows[probes[k]->times()[s]];
       row.resize(probes.size(), std::string::npos);
       row[k] = s;
     }
+  if (rows.empty()) return {};
   std::vector<std::vector<double>> series;  // probe-major, field-minor
   for (const auto& p : probes)
     for (Field f : fields) series.push_back(p->series(f));
@@ -62,6 +94,11 @@ std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& prob
 }
 
 template <int Dim>
+std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
+  return probes_csv_header(probes) + probes_csv_rows(probes, std::vector<std::size_t>(probes.size(), 0));
+}
+
+template <int Dim>
 VtuMeta particle_meta(const Model<Dim>& model, const std::string& phase) {
   VtuMeta meta{model.time(), phase, {}, {}, model.phase_time()};
   for (int m = 0; m < model.material_count(); ++m) meta.material_names.push_back(model.material_name(m));
@@ -70,11 +107,7 @@ VtuMeta particle_meta(const Model<Dim>& model, const std::string& phase) {
 }
 
 template <int Dim>
-Output<Dim>::Output(OutputSettings settings) : settings_(std::move(settings)) {
-  if (!(settings_.every > 0.0)) throw InputError("output: every must be > 0 (s)");
-  if (settings_.arrays.empty()) throw InputError("output: no fields to write");
-  ensure_directory(settings_.dir);
-}
+Output<Dim>::Output(OutputSettings settings) : settings_(std::move(settings)), lock_(checked_directory(settings_)) {}
 
 template <int Dim>
 void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_ptr<Probe<Dim>>>& probes,
@@ -103,7 +136,64 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
     grid_files_.emplace_back(t, grid_name);
     write_file_atomically(settings_.dir + "/grid.pvd", pvd_text(grid_files_));
   }
-  if (!probes.empty()) write_file_atomically(settings_.dir + "/probes.csv", probes_csv_text(probes));
+  if (!probes.empty()) write_probes(probes);
+}
+
+template <int Dim>
+void Output<Dim>::write_probes(const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
+  if (probes.empty()) return;
+  if (probe_samples_written_.size() != probes.size() || probes_csv_header(probes) != probes_header_)
+    return write_probes_whole(probes);  // the first write, or probes added since: other columns
+  std::vector<std::size_t> first = probe_samples_written_;
+  double earliest = std::numeric_limits<double>::infinity(), latest = earliest;
+  for (std::size_t k = 0; k < probes.size(); ++k)
+    if (first[k] < probes[k]->samples()) {
+      earliest = std::min(earliest, probes[k]->times()[first[k]]);
+      latest = std::isinf(latest) ? probes[k]->times().back() : std::max(latest, probes[k]->times().back());
+    }
+  if (std::isinf(earliest)) return;  // nothing new
+  if (earliest < probes_last_row_time_) return write_probes_whole(probes);  // not in time order: rewrite
+  std::uint64_t offset = probes_bytes_;
+  if (earliest == probes_last_row_time_) {
+    // A probe sampled at the last row's time after it was written (at a run's end): that row again.
+    offset = probes_last_row_;
+    for (std::size_t k = 0; k < probes.size(); ++k)
+      if (first[k] > 0 && probes[k]->times()[first[k] - 1] == probes_last_row_time_) --first[k];
+  }
+  const std::string rows = probes_csv_rows(probes, first);
+  if (!replace_file_tail(settings_.dir + "/probes.csv", probes_bytes_, offset, rows))
+    return write_probes_whole(probes);  // the file was changed or removed meanwhile
+  probes_last_row_ = offset + last_row_start(rows);
+  probes_bytes_ = offset + rows.size();
+  probes_last_row_time_ = std::max(latest, probes_last_row_time_);
+  for (std::size_t k = 0; k < probes.size(); ++k) probe_samples_written_[k] = probes[k]->samples();
+}
+
+template <int Dim>
+void Output<Dim>::write_probes_whole(const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
+  const std::string header = probes_csv_header(probes);
+  const std::string rows = probes_csv_rows(probes, std::vector<std::size_t>(probes.size(), 0));
+  write_file_atomically(settings_.dir + "/probes.csv", header + rows);
+  probes_header_ = header;
+  probes_bytes_ = header.size() + rows.size();
+  probes_last_row_ = header.size() + last_row_start(rows);
+  probes_last_row_time_ = std::numeric_limits<double>::quiet_NaN();
+  probe_samples_written_.clear();
+  for (const auto& p : probes) {
+    probe_samples_written_.push_back(p->samples());
+    if (p->samples() > 0 && !(p->times().back() <= probes_last_row_time_)) probes_last_row_time_ = p->times().back();
+  }
+}
+
+template <int Dim>
+void Output<Dim>::rewrite_tables([[maybe_unused]] const Model<Dim>& model,
+                                 const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
+  if (!probes.empty()) write_probes_whole(probes);
+  const std::string reactions = settings_.dir + "/reactions.csv";
+  if (!reactions_.empty())
+    write_file_atomically(reactions, reactions_);
+  else
+    std::remove(reactions.c_str());  // no row before the checkpoint
 }
 
 template <int Dim>
@@ -117,12 +207,13 @@ void Output<Dim>::write_reactions(const Model<Dim>& model, const std::string& ph
     os << "time (s),phase";
     for (const auto& b : bodies)
       if (b.rigid)
-        for (int d = 0; d < Dim; ++d) os << ',' << b.name << ".f" << axis[d] << " (N" << (Dim == 2 ? "/m" : "") << ")";
+        for (int d = 0; d < Dim; ++d) 
+            os << ',' << csv_field(b.name + ".f" + axis[d] + " (N" + (Dim == 2 ? "/m" : "") + ")");
     os << '\n';
     last_impulse_.assign(bodies.size(), Vec<Dim>::Zero());
   }
   last_impulse_.resize(bodies.size(), Vec<Dim>::Zero());
-  os << t << ',' << phase;
+  os << t << ',' << csv_field(phase);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (!bodies[b].rigid) continue;
     const auto& motion = model.rigid_motion(static_cast<int>(b));
@@ -133,11 +224,19 @@ void Output<Dim>::write_reactions(const Model<Dim>& model, const std::string& ph
     last_impulse_[b] = motion.impulse;
   }
   os << '\n';
-  reactions_ += os.str();
+  const std::string text = os.str();
+  const std::string path = settings_.dir + "/reactions.csv";
+  // The first row comes with the header, written whole; the next ones are appended, one write each.
+  if (reactions_.empty() || !replace_file_tail(path, reactions_.size(), reactions_.size(), text))
+    write_file_atomically(path, reactions_ + text);
+  reactions_ += text;
   last_time_ = t;
-  write_file_atomically(settings_.dir + "/reactions.csv", reactions_);
 }
 
+template std::string probes_csv_header<2>(const std::vector<std::shared_ptr<Probe<2>>>&);
+template std::string probes_csv_header<3>(const std::vector<std::shared_ptr<Probe<3>>>&);
+template std::string probes_csv_rows<2>(const std::vector<std::shared_ptr<Probe<2>>>&, const std::vector<std::size_t>&);
+template std::string probes_csv_rows<3>(const std::vector<std::shared_ptr<Probe<3>>>&, const std::vector<std::size_t>&);
 template std::string probes_csv_text<2>(const std::vector<std::shared_ptr<Probe<2>>>&);
 template std::string probes_csv_text<3>(const std::vector<std::shared_ptr<Probe<3>>>&);
 template VtuMeta particle_meta<2>(const Model<2>&, const std::string&);

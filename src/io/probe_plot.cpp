@@ -1,11 +1,13 @@
 #include "probe_plot.hpp"
 
-#include <fstream>
+#include <filesystem>
 #include <sstream>
 
 #include "atomic_file.hpp"
 #include "core/error.hpp"
+#include "csv_table.hpp"
 #include "gnuplot.hpp"
+#include "text_lines.hpp"
 
 namespace seismpm {
 
@@ -35,14 +37,16 @@ std::string field_unit(const std::string& f) {
 
 std::vector<std::string> plot_probes(const std::string& dir, const std::vector<std::string>& quantities) {
   const std::string csv = dir + "/probes.csv";
-  std::ifstream in(csv);
-  if (!in) throw OutputError("cannot plot: " + csv + " does not exist (a model with probes and m:output writes it)");
+  if (!std::filesystem::is_regular_file(csv))
+    throw OutputError("cannot plot: " + csv + " does not exist (a model with probes and m:output writes it)");
+  TextLines in(csv);
   std::string header;
-  std::getline(in, header);
+  in.next(header);
   std::vector<std::string> columns;
-  {
-    std::istringstream hs(header);
-    for (std::string c; std::getline(hs, c, ',');) columns.push_back(c);
+  try {
+    columns = split_csv_fields(header);  // probe names may hold commas and quotes
+  } catch (const InputError& e) {
+    throw OutputError(csv + ":1: " + e.what());
   }
   if (columns.size() < 2 || columns[0] != "time (s)")
     throw OutputError(csv + ":1: not a probes file (the first column must be 'time (s)')");

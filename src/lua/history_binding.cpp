@@ -24,8 +24,12 @@ const Key kCsvKeys[] = {
                 "the CSV file; a relative one not found from the current directory is looked for next to "
                 "the script")
         .required(),
-    arg::string("time", "the column of times (s)").def_text("t"),
-    arg::string("value", "the column of values").required(),
+    arg::custom("time", "name or number", "",
+                "the column of times (s): its name in the header line, or its number counted from 1 (then the "
+                "file may have no header)")
+        .def_text("t"),
+    arg::custom("value", "name or number", "", "the column of values: its name, or its number counted from 1")
+        .required(),
     arg::number("scale", "", "factor on the values").def(1),
     arg::number("shift", "s", "added to the times").def(0),
 };
@@ -67,13 +71,37 @@ int history_table(lua_State* L) {
   return 1;
 }
 
-// mpm.history.csv{file =, time = "t", value = "v", scale = 1, shift = 0}
+// A column key: a header name, or a whole number counted from 1.
+CsvColumn column_key(const Args& a, const char* key, const char* fallback) {
+  lua_State* L = a.state();
+  const int type = a.push(key);
+  const std::string got = type_name(L, -1);
+  const double n = type == LUA_TNUMBER ? lua_tonumber(L, -1) : 0.0;
+  const std::string name = type == LUA_TSTRING ? lua_tostring(L, -1) : "";
+  lua_pop(L, 1);
+  const std::string what = "key '" + std::string(key) + "'";
+  if (type == LUA_TNUMBER) {
+    if (!(n >= 1 && n <= 1e6 && n == std::floor(n))) {
+      std::ostringstream os;
+      os << what << ": a column number is a whole number from 1, got " << n;
+      throw Error(os.str());
+    }
+    return CsvColumn::numbered(static_cast<int>(n));
+  }
+  if (type == LUA_TSTRING) return CsvColumn(name);
+  if (type != LUA_TNIL) throw Error(what + " must be a column name or number, got " + got);
+  if (!fallback) throw Error("missing " + what);
+  return CsvColumn(fallback);
+}
+
+// mpm.history.csv{file =, time = "t" or 1, value = "v" or 2, scale = 1, shift = 0}
 int history_csv(lua_State* L) {
   const Args a(L, 1, kCsvKeys);
+  const CsvColumn time = column_key(a, "time", "t"), value = column_key(a, "value", nullptr);
   const std::string file = data_path(L, a.string("file"));
   check_readable(L, file, "key 'file'");
   const double scale = a.number("scale"), shift = a.number("shift");
-  auto c = read_csv_columns(file, {a.string("time"), a.string("value")});
+  auto c = read_csv_columns(file, {time, value});
   for (std::size_t k = 1; k < c.columns[0].size(); ++k)
     if (!(c.columns[0][k] > c.columns[0][k - 1]))
       throw Error(file + ":" + std::to_string(c.lines[k]) + ": times must increase (" +
@@ -176,8 +204,9 @@ const Function kHistory[] = {
      "A piecewise-linear history; zero before the first and after the last point.",
      "local vx = mpm.history.table{ {0, 0}, {0.1, 2}, {5, 2} }"},
     {"mpm.history.csv", &guarded<history_csv>, nullptr, kCsvKeys,
-     "A history from two named columns of a CSV file with a header line; '#' lines are skipped. Errors name the "
-     "file and line.",
+     "A history from two columns of a CSV file, by their names in its header line or by their numbers "
+     "(time = 1, value = 2: the header line is then optional); '#' lines are skipped, quoted fields are read. "
+     "Errors name the file and line.",
      "local vx = mpm.history.csv{ file = \"data/table_velocity.csv\", time = \"t\", value = \"vx\" }"},
     {"mpm.history.fn",
      &guarded<history_fn>,

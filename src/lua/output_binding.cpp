@@ -88,7 +88,7 @@ int model_plot(lua_State* L) {
   const Output<2>* output = h.simulation.output();
   if (!output) throw Error("no output directory yet: call m:output{ dir = ... } first");
   if (h.simulation.probes().empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
-  write_file_atomically(output->settings().dir + "/probes.csv", probes_csv_text(h.simulation.probes()));
+  h.simulation.write_probes();
   const auto files = plot_probes(output->settings().dir, quantities);
   lua_createtable(L, static_cast<int>(files.size()), 0);
   for (std::size_t i = 0; i < files.size(); ++i) {

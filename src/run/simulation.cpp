@@ -92,6 +92,12 @@ void Simulation<Dim>::write() {
 }
 
 template <int Dim>
+void Simulation<Dim>::write_probes() {
+  if (!output_) throw InputError("no output directory yet");
+  output_->write_probes(probes_);
+}
+
+template <int Dim>
 void Simulation<Dim>::sample_probe(std::size_t k) {
   probes_[k]->sample(model_);
   schedule_.fired(probe_streams_[k], model_.time());

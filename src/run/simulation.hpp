@@ -86,6 +86,8 @@ class Simulation {
   const Output<Dim>* output() const { return output_.get(); }
   // Samples the probes and writes the current state, unless it is on file already.
   void write();
+  // probes.csv up to date with the probes' samples (before plotting it).
+  void write_probes();
 
   // --- how runs behave ---
   // The local damping coefficient for this and later runs (in [0, 1)).
