@@ -9,18 +9,10 @@
 #include "atomic_file.hpp"
 #include "core/error.hpp"
 #include "csv_table.hpp"
-#include "csv_table.hpp"
 
 namespace seismpm {
 
 namespace {
-// The settings an Output refuses, checked before its directory is made and locked.
-const OutputSettings& check(const OutputSettings& s) {
-  if (!(s.every > 0.0)) throw InputError("output: every must be > 0 (s)");
-  if (s.arrays.empty()) throw InputError("output: no fields to write");
-  return s;
-}
-
 // Where the last row of `rows` (whole lines) starts.
 std::size_t last_row_start(const std::string& rows) {
   if (rows.size() < 2) return 0;
@@ -207,8 +199,8 @@ void Output<Dim>::write_reactions(const Model<Dim>& model, const std::string& ph
     os << "time (s),phase";
     for (const auto& b : bodies)
       if (b.rigid)
-        for (int d = 0; d < Dim; ++d) 
-            os << ',' << csv_field(b.name + ".f" + axis[d] + " (N" + (Dim == 2 ? "/m" : "") + ")");
+        for (int d = 0; d < Dim; ++d)
+          os << ',' << csv_field(b.name + ".f" + axis[d] + " (N" + (Dim == 2 ? "/m" : "") + ")");
     os << '\n';
     last_impulse_.assign(bodies.size(), Vec<Dim>::Zero());
   }

@@ -277,15 +277,15 @@ class CheckpointAccess {
     }
   }
 
-  static void rewrite_output_files(const Simulation<Dim>& sim) {
-    const Output<Dim>* out = sim.output_.get();
+  static void rewrite_output_files(Simulation<Dim>& sim) {
+    Output<Dim>* out = sim.output_.get();
     if (!out) return;
     const std::string& dir = out->settings_.dir;
     write_file_atomically(dir + "/particles.pvd", pvd_text(out->files_));
     if (!out->rigid_files_.empty()) write_file_atomically(dir + "/rigid.pvd", pvd_text(out->rigid_files_));
     if (!out->grid_files_.empty()) write_file_atomically(dir + "/grid.pvd", pvd_text(out->grid_files_));
-    if (!sim.probes_.empty()) write_file_atomically(dir + "/probes.csv", probes_csv_text(sim.probes_));
-    if (!out->reactions_.empty()) write_file_atomically(dir + "/reactions.csv", out->reactions_);
+    // The tables whole, which also restarts their appending from the restored rows.
+    out->rewrite_tables(sim.model_, sim.probes_);
   }
 
  private:
@@ -725,7 +725,7 @@ void restore_checkpoint(const CheckpointReader& file, Simulation<Dim>& simulatio
 }
 
 template <int Dim>
-void rewrite_output_files(const Simulation<Dim>& simulation) {
+void rewrite_output_files(Simulation<Dim>& simulation) {
   CheckpointAccess<Dim>::rewrite_output_files(simulation);
 }
 
@@ -735,7 +735,7 @@ template ModelSettings<2> checkpoint_settings<2>(const CheckpointReader&);
 template ModelSettings<3> checkpoint_settings<3>(const CheckpointReader&);
 template void restore_checkpoint<2>(const CheckpointReader&, Simulation<2>&, const SuppliedHistories&);
 template void restore_checkpoint<3>(const CheckpointReader&, Simulation<3>&, const SuppliedHistories&);
-template void rewrite_output_files<2>(const Simulation<2>&);
-template void rewrite_output_files<3>(const Simulation<3>&);
+template void rewrite_output_files<2>(Simulation<2>&);
+template void rewrite_output_files<3>(Simulation<3>&);
 
 }  // namespace seismpm

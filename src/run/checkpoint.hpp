@@ -55,6 +55,6 @@ void restore_checkpoint(const CheckpointReader& file, Simulation<Dim>& simulatio
 // and reactions.csv hold only its rows (the run after the checkpoint may have written more before it
 // stopped). Each is rewritten whole, atomically.
 template <int Dim>
-void rewrite_output_files(const Simulation<Dim>& simulation);
+void rewrite_output_files(Simulation<Dim>& simulation);
 
 }  // namespace seismpm
