@@ -3,16 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 #include "diagnostics.hpp"
 #include "error.hpp"
 #include "format.hpp"
+#include "memory_estimate.hpp"
 
 namespace seismpm {
 
 template <int Dim>
 Model<Dim>::Model(const ModelSettings<Dim>& settings)
-    : settings_(settings), grid_(settings.lower, settings.upper, settings.cell, 1), support_(grid_) {
+    : settings_(with_grid_memory_checked(settings)),
+      grid_(settings.lower, settings.upper, settings.cell, 1),
+      support_(grid_) {
   for (int d = 0; d < Dim; ++d)
     if (grid_.domain_cells(d) < 2) throw InputError("model: the domain must span at least 2 cells along every axis");
   if (!(settings.cfl > 0.0 && settings.cfl <= 1.0)) throw InputError("model: cfl must be in (0, 1]");
@@ -21,6 +25,46 @@ Model<Dim>::Model(const ModelSettings<Dim>& settings)
   if (settings.sort_every < 1) throw InputError("model: sort_every must be >= 1");
   if (!(settings.max_dilation == 0.0 || settings.max_dilation >= 1.0))
     throw InputError("model: max_dilation must be 0 (no limit) or >= 1");
+}
+
+// ---------------------------------------------------------------- memory
+
+template <int Dim>
+double Model<Dim>::grid_bytes(const ModelSettings<Dim>& s) {
+  double nodes = 1.0, cells = 1.0;
+  for (int d = 0; d < Dim; ++d) {
+    const double n = std::ceil((s.upper[d] - s.lower[d]) / s.cell - 1e-9) + 2.0;  // one ghost cell each side
+    if (!(n > 0.0)) return 0.0;  // an empty or broken domain: the grid names it
+    nodes *= n + 1.0;
+    cells *= n;
+  }
+  // Per node: mass, momentum, force, velocity, acceleration, fixity. Per cell: volume and dilation
+  // (cell-averaged volumetric strain), its contact fields and the near-shared flag.
+  const double per_node = sizeof(double) + 4.0 * sizeof(Vec<Dim>) + 1.0;
+  const double per_cell = 2.0 * sizeof(double) + 8.0 + 1.0;
+  return nodes * per_node + cells * per_cell;
+}
+
+template <int Dim>
+const ModelSettings<Dim>& Model<Dim>::with_grid_memory_checked(const ModelSettings<Dim>& s) {
+  if (s.check_memory && s.cell > 0.0) {
+    const double bytes = grid_bytes(s);
+    if (std::isfinite(bytes)) check_memory(static_cast<std::uint64_t>(std::min(bytes, 1.8e19)), "the grid");
+  }
+  return s;
+}
+
+template <int Dim>
+std::size_t Model<Dim>::bytes_per_particle() const {
+  std::size_t bytes = 0;
+  particles_.for_each_member(
+      [&](const auto& field) { bytes += sizeof(typename std::decay_t<decltype(field)>::value_type); });
+  // The step's arrays: the stencil of the model's shape and the particle's cell, the strain increment
+  // and spin, the id index, the per-material lists and the sort's permutation.
+  bytes +=
+      settings_.shape == ShapeKind::Linear ? sizeof(Stencil<Dim, LinearShape::K>) : sizeof(Stencil<Dim, GimpShape::K>);
+  bytes += sizeof(int) + sizeof(Sym) + sizeof(Eigen::Vector3d) + 3 * sizeof(int);
+  return bytes;
 }
 
 // ---------------------------------------------------------------- building
@@ -165,13 +209,33 @@ std::vector<Vec<Dim>> Model<Dim>::fill_points(int ppc, const Vec<Dim>& lo, const
   return points;
 }
 
+// Before a fill allocates anything: the sub-points of its box bound the particle count from above, and
+// only when that bound does not fit are the points inside counted (a second pass over the shape).
+template <int Dim>
+void Model<Dim>::check_fill_memory(const Body& b, const Vec<Dim>& lo, const Vec<Dim>& hi,
+                                   const std::function<bool(const Vec<Dim>&)>& inside) const {
+  if (b.ppc < 1 || b.ppc > kMaxParticlesPerCell) return;  // fill_points names it
+  // Per particle: its arrays and, while the fill runs, its position in the list of points.
+  const double per_particle = static_cast<double>(bytes_per_particle() + sizeof(Vec<Dim>));
+  double candidates = 1.0;
+  for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * b.ppc;
+  const std::uint64_t available = available_memory();
+  if (available == 0 || candidates > 2e8 || candidates * per_particle <= static_cast<double>(available)) return;
+  std::size_t count = 0;
+  for_each_sub_point(grid_, b.ppc, lo, hi, [&](const Vec<Dim>& x) { count += inside(x) ? 1 : 0; });
+  check_memory(static_cast<std::uint64_t>(static_cast<double>(count) * per_particle),
+               "body '" + b.name + "' (" + std::to_string(count) + " particles)");
+}
+
 template <int Dim>
 std::size_t Model<Dim>::fill(int body, const std::function<int(const Vec<Dim>&)>& material_at, const Vec<Dim>& lo,
                              const Vec<Dim>& hi, const std::function<bool(const Vec<Dim>&)>& inside,
                              const std::function<Vec<Dim>(const Vec<Dim>&)>& outward) {
   if (body < 0 || body >= static_cast<int>(bodies_.size())) throw InputError("fill: unknown body");
   const Body& b = bodies_[body];
+  if (settings_.check_memory) check_fill_memory(b, lo, hi, inside);
   const auto points = fill_points(b.ppc, lo, hi, inside);
+  particles_.reserve(particles_.size() + points.size());  // exactly: no doubling of every array
   // Every point's material first, so that a point without a valid one adds nothing.
   std::vector<int> material(points.size(), b.material);
   for (std::size_t k = 0; k < points.size() && !b.rigid; ++k) {

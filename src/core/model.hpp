@@ -52,6 +52,8 @@ struct ModelSettings {
   // (ratcheting dilation: a shaking-table slope doubled its volume at the wall).
   bool crack_closure = true;
   bool profile = false;  // time each stage of the step (Model::stage_times)
+  // Refuse a grid or a fill whose arrays would need more memory than the system has available.
+  bool check_memory = true;
 };
 
 template <int Dim>
@@ -102,6 +104,10 @@ class Model {
                    const Vec<Dim>& hi, const std::function<bool(const Vec<Dim>&)>& inside,
                    const std::function<Vec<Dim>(const Vec<Dim>&)>& outward = {});
   std::size_t fill_box(int body, int material, const Vec<Dim>& lo, const Vec<Dim>& hi);
+  // The memory one particle takes (its fields and the step's per-particle arrays), and the memory of a
+  // grid built with `settings` (its nodes' fields and the step's per-cell arrays), in bytes.
+  std::size_t bytes_per_particle() const;
+  static double grid_bytes(const ModelSettings<Dim>& settings);
   // The positions a fill with ppc particles per cell per axis would give particles, in creation
   // order; adds nothing.
   std::vector<Vec<Dim>> fill_points(int ppc, const Vec<Dim>& lo, const Vec<Dim>& hi,
@@ -203,6 +209,11 @@ class Model {
 
   // Upkeep (particle_order.cpp, particle_checks.cpp).
   int new_body(const std::string& name, int ppc, bool rigid);
+  // `s`, after refusing a grid that needs more memory than is available (check_memory).
+  static const ModelSettings<Dim>& with_grid_memory_checked(const ModelSettings<Dim>& s);
+  // Throws InputError when the particles a fill would add need more memory than is available.
+  void check_fill_memory(const Body& b, const Vec<Dim>& lo, const Vec<Dim>& hi,
+                         const std::function<bool(const Vec<Dim>&)>& inside) const;
   void rebuild_material_lists();
   void sort_particles();
   void check_particles() const;

@@ -46,6 +46,10 @@ struct Particles {
 
   // Reorders every field so that new index k holds old particle order[k].
   void permute(const std::vector<int>& order);
+  // Room for n particles in every array, so that adding them allocates each array once.
+  void reserve(std::size_t n) {
+    for_each_member([n](auto& field) { field.reserve(n); });
+  }
 
   // Sets displacement and total strain to zero (end of a gravity phase).
   void reset_kinematics();

@@ -1,8 +1,10 @@
 #include "progress.hpp"
 
+#include <sys/ioctl.h>
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
 
 namespace seismpm {
 
@@ -10,6 +12,9 @@ namespace {
 
 std::string clock_text(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  // An ETA from a first step that hardly moved the clock can be astronomical: no conversion of it to an
+  // integer may overflow, and past 1000 hours the figure says nothing more anyway.
+  if (seconds >= 1000.0 * 3600.0) return "> 1000 h";
   const long s = std::lround(seconds);
   char buf[32];
   if (s >= 3600)
@@ -19,7 +24,21 @@ std::string clock_text(double seconds) {
   return buf;
 }
 
+// The width of the terminal `out` writes to, 0 when it cannot be told.
+int terminal_width(std::FILE* out) {
+  winsize size{};
+  if (ioctl(fileno(out), TIOCGWINSZ, &size) != 0) return 0;
+  return size.ws_col;
+}
+
 }  // namespace
+
+std::string fit_width(const std::string& text, int width) {
+  // A line wider than the terminal wraps, and "\r" then rewrites only its last row: the rows above stay
+  // on the screen, one more at every update. One column is kept free for the cursor.
+  if (width <= 1 || static_cast<int>(text.size()) < width) return text;
+  return text.substr(0, static_cast<std::size_t>(width - 1));
+}
 
 Progress::Mode Progress::detect(std::FILE* out, bool quiet) {
   if (quiet) return Mode::Quiet;
@@ -57,7 +76,7 @@ void Progress::update(double t, long step, double dt, const std::string& extra) 
   if (since < (mode_ == Mode::Terminal ? 0.2 : 5.0)) return;
   last_print_ = now;
   if (mode_ == Mode::Terminal)
-    std::fprintf(out_, "\r\033[K%s", line(t, step, dt, extra).c_str());
+    std::fprintf(out_, "\r\033[K%s", fit_width(line(t, step, dt, extra), terminal_width(out_)).c_str());
   else
     std::fprintf(out_, "%s\n", line(t, step, dt, extra).c_str());
   std::fflush(out_);

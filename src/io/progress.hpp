@@ -1,5 +1,6 @@
 // Progress of a long run: on a terminal one line rewritten in place (phase, t / t_end, step, dt,
-// particle-steps per second, ETA); otherwise a plain log line every few seconds; or nothing.
+// particle-steps per second, ETA) clipped to the terminal's width; otherwise a plain log line every few seconds; or
+// nothing.
 #pragma once
 
 #include <chrono>
@@ -7,6 +8,10 @@
 #include <string>
 
 namespace seismpm {
+
+// `text` cut to fit a terminal `width` columns wide (the progress line holds only ASCII); as it is when
+// the width is unknown (0).
+std::string fit_width(const std::string& text, int width);
 
 class Progress {
  public:

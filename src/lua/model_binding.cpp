@@ -37,6 +37,9 @@ const Key kModelKeys[] = {
     arg::boolean("crack_closure", kKernel.crack_closure,
                  "a tensionless particle looser than its initial density closes that opening first when compressed, "
                  "without raising its mean stress"),
+    arg::boolean("check_memory", kKernel.check_memory,
+                 "refuse a grid or a body whose arrays need more memory than the machine has available now (the "
+                 "error gives both figures); false builds it anyway"),
 };
 
 // The domain {{x0, y0}, {x1, y1}} of mpm.model's arguments, read raw.
@@ -75,6 +78,7 @@ int model_new(lua_State* L) {
   s.max_dilation = a.number("max_dilation");
   s.cell_volumetric_strain = a.boolean("cell_volumetric_strain");
   s.crack_closure = a.boolean("crack_closure");
+  s.check_memory = a.boolean("check_memory");
   auto handle = std::make_shared<ModelHandle>(s);
   push_object(L, ModelObject{std::move(handle)});
   return 1;

@@ -218,6 +218,7 @@ RunEnd Simulation<Dim>::run_for(const RunSpec& spec, const ActiveRun* resumed) {
   if (running_) throw std::logic_error("a run's call may not step the model");
   if (spec.call && spec.call->active() && !spec.call->function) throw InputError("run: a call without a function");
   if (!resumed) drop_interrupted_run();
+  check_intervals();
   FlagScope running(running_);
   Progress progress(stderr, progress_mode_);
   active_ =
@@ -243,6 +244,34 @@ RunEnd Simulation<Dim>::run_for(const RunSpec& spec, const ActiveRun* resumed) {
   }
   finish_run(spec, how, progress);
   return how;
+}
+
+// An interval below the time step would cut every step short to land on it: the run would crawl at that
+// interval and, for files, fill the disk. Refused at the run's start, naming both figures, instead.
+template <int Dim>
+void Simulation<Dim>::check_intervals() const {
+  if (model_.particles().size() == 0) return;
+  const double fixed = model_.settings().fixed_dt;
+  const double dt = fixed > 0.0 ? fixed : model_.stable_time_step();
+  if (!(dt > 0.0) || !std::isfinite(dt)) return;  // the step itself reports a broken state
+  auto text = [](double v) {
+    std::ostringstream os;
+    os.precision(4);
+    os << v;
+    return os.str();
+  };
+  if (output_ && output_->settings().every < dt)
+    throw InputError("m:output: every = " + text(output_->settings().every) + " s is shorter than the time step (" +
+                     text(dt) + " s): every step would be cut short to write a file. Give every >= " + text(dt) + " s");
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    const double every = schedule_.every(probe_streams_[k]);
+    if (every > 0.0 && every < dt)
+      throw InputError("probe '" + std::string(probes_[k]->name()) + "': every = " + text(every) +
+                       " s is shorter than the time step (" + text(dt) +
+                       " s): every step would be cut short to sample it. Give every = 0 to sample every step, or "
+                       "every >= " +
+                       text(dt) + " s");
+  }
 }
 
 // What a step reached: probe samples, an output, the end criterion, the run's call (at its times and

@@ -165,6 +165,8 @@ class Simulation {
   GravityPhaseResult run_gravity_phase(const ActiveRun* resumed);
   void drop_interrupted_run();
   void checkpoint_if_due();
+  // Throws InputError for an output or probe interval shorter than the time step.
+  void check_intervals() const;
   RunEnd after_step(const RunSpec& spec, EventSchedule::Stream call, Progress& progress);
   void finish_run(const RunSpec& spec, RunEnd how, Progress& progress);
   void stop_if_interrupted(Progress& progress) const;

@@ -435,3 +435,30 @@ TEST_CASE("mpm.plot and m:output refuse control characters (a line break would r
   CHECK_THAT(run("mpm.plot{ file = 'a.csv', x = 't', y = {'v\\r'} }"), Contains("holds a control character"));
   CHECK_THAT(run("m:output{ dir = 'out\\nsystem' }"), Contains("key 'dir'") && Contains("holds a control character"));
 }
+
+TEST_CASE("mpm.model: a grid larger than the machine's memory is a Lua error with both figures",
+          "[lua][memory][robustness]") {
+  LuaFixture f;
+  const std::string message = f.error_of("mpm.model{ domain = {{0, 0}, {1e6, 1e6}}, cell = 1 }");
+  CAPTURE(message);
+  CHECK_THAT(message, Contains("the grid needs about ") && Contains("of memory, more than the ") &&
+                          Contains("check_memory = false"));
+}
+
+TEST_CASE("an output or probe interval shorter than the time step is refused at the run's start", "[lua][robustness]") {
+  // The soil's p-wave speed is about 37 m/s: the stable step on 0.1 m cells is about 1e-3 s.
+  LuaFixture f;
+  const std::string dir = (fs::temp_directory_path() / ("seismpm_interval_" + std::to_string(getpid()))).string();
+  const std::string output =
+      f.error_of(std::string(kModel) + "m:output{ dir = '" + dir + "', every = 1e-9 }\nm:run{ duration = 0.01 }");
+  CAPTURE(output);
+  CHECK_THAT(output,
+             Contains("m:output: every = 1e-09 s is shorter than the time step (") && Contains("Give every >= "));
+  const std::string probe = f.error_of(std::string(kModel) +
+                                       "m:probe{ name = 'top', body = soil, at = {0.4, 0.5}, every = 1e-7 }\n"
+                                       "m:run{ duration = 0.01 }");
+  CAPTURE(probe);
+  CHECK_THAT(probe, Contains("probe 'top': every = 1e-07 s is shorter than the time step (") &&
+                        Contains("Give every = 0 to sample every step"));
+  fs::remove_all(dir);
+}
