@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "console.hpp"
+#include "thread_waiting.hpp"
 #include "io/probe_plot.hpp"
 #include "io/progress.hpp"
 #include "lua/api_docs.hpp"
@@ -202,6 +203,7 @@ int run_lua(const CommandLine& cl, seismpm::lua::Session& session, const char* a
 }  // namespace
 
 int main(int argc, char** argv) {
+  seismpm::app::use_default_thread_waiting(argv);
   CommandLine cl;
   if (const int status = parse_command_line(argc, argv, cl); status >= 0) return status;
   if (cl.version) {
