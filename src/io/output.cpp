@@ -143,7 +143,7 @@ void Output<Dim>::write_probes(const std::vector<std::shared_ptr<Probe<Dim>>>& p
       earliest = std::min(earliest, probes[k]->times()[first[k]]);
       latest = std::isinf(latest) ? probes[k]->times().back() : std::max(latest, probes[k]->times().back());
     }
-  if (std::isinf(earliest)) return;  // nothing new
+  if (std::isinf(earliest)) return;                                         // nothing new
   if (earliest < probes_last_row_time_) return write_probes_whole(probes);  // not in time order: rewrite
   std::uint64_t offset = probes_bytes_;
   if (earliest == probes_last_row_time_) {

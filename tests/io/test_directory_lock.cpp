@@ -91,7 +91,7 @@ std::string read_text(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("directory lock: another process holding it is named; a killed one blocks nothing",
+TEST_CASE("directory lock: another process holding it is named, a killed one blocks nothing",
           "[io][lock][robustness]") {
   const std::string dir = fresh_dir("lock_other");
   Holder holder(dir);
