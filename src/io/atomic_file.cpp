@@ -49,7 +49,7 @@ void commit_file(const std::string& temporary, const std::string& path) {
 bool replace_file_tail(const std::string& path, std::uint64_t size, std::uint64_t offset, const std::string& text) {
   const int fd = open(path.c_str(), O_WRONLY | O_CLOEXEC);
   if (fd < 0) return false;
-  struct stat st{};
+  struct stat st {};
   if (fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || static_cast<std::uint64_t>(st.st_size) != size || offset > size) {
     close(fd);
     return false;
@@ -61,8 +61,7 @@ bool replace_file_tail(const std::string& path, std::uint64_t size, std::uint64_
   if (!ok && ftruncate(fd, static_cast<off_t>(size)) != 0) {
   }  // best effort: the rows written before stay whole
   close(fd);
-  if (!ok)
-    throw OutputError("cannot write " + path + ": " + std::strerror(n < 0 ? err : ENOSPC) + " (disk full?)");
+  if (!ok) throw OutputError("cannot write " + path + ": " + std::strerror(n < 0 ? err : ENOSPC) + " (disk full?)");
   return true;
 }
 

@@ -29,7 +29,8 @@ void plot_csv(const CsvPlot& p) {
   auto column = [&](const std::string& name) {
     for (std::size_t c = 0; c < columns.size(); ++c)
       if (columns[c] == name) return c + 1;  // gnuplot counts from 1
-    throw InputError(p.csv + ":" + std::to_string(in.number()) + ": no column '" + printable(name) + "' (the header is: " + printable(header, 200) + ")");
+    throw InputError(p.csv + ":" + std::to_string(in.number()) + ": no column '" + printable(name) +
+                     "' (the header is: " + printable(header, 200) + ")");
   };
   const std::size_t xc = column(p.x);
   if (p.y.empty()) throw InputError("cannot plot: no y columns given");

@@ -55,9 +55,9 @@ std::vector<std::string> split_csv_fields(std::string_view line) {
 }
 
 std::string csv_field(std::string_view text) {
-  const bool quote = text.find_first_of(",\"\r\n") != std::string_view::npos ||
-                     (!text.empty() && (text.front() == ' ' || text.back() == ' ' || text.front() == '\t' ||
-                                        text.back() == '\t'));
+  const bool quote =
+      text.find_first_of(",\"\r\n") != std::string_view::npos ||
+      (!text.empty() && (text.front() == ' ' || text.back() == ' ' || text.front() == '\t' || text.back() == '\t'));
   if (!quote) return std::string(text);
   std::string out = "\"";
   for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
@@ -84,12 +84,14 @@ CsvColumns read_csv_columns(const std::string& file, const std::vector<CsvColumn
     }
     if (!header_read) {
       header_read = true;
-      bool data = all_numbered;
+      // With every column numbered, the first line is a header only when none of its cells there is a
+      // number: a broken first row of a header-less file is an error, not a line skipped.
+      bool any_number = false;
       double v;
       for (const auto& c : wanted) {
         index.push_back(c.number > 0 ? static_cast<std::size_t>(c.number - 1) : cells.size());
         if (c.number > 0) {
-          data = data && index.back() < cells.size() && parse_number(cells[index.back()], v);
+          any_number = any_number || (index.back() < cells.size() && parse_number(cells[index.back()], v));
           continue;
         }
         for (std::size_t k = 0; k < cells.size(); ++k)
@@ -97,11 +99,11 @@ CsvColumns read_csv_columns(const std::string& file, const std::vector<CsvColumn
         if (index.back() == cells.size()) {
           std::string have;
           for (const auto& h : cells) have += (have.empty() ? "" : ", ") + h;
-          throw InputError(in.where() + "no column '" + printable(c.name) + "' in the header (columns: " +
-                           printable(have, 200) + ")");
+          throw InputError(in.where() + "no column '" + printable(c.name) +
+                           "' in the header (columns: " + printable(have, 200) + ")");
         }
       }
-      if (!data) continue;  // a header line (or, with numbered columns, a line of names)
+      if (!all_numbered || !any_number) continue;  // a header line (or, with numbered columns, a line of names)
     }
     for (std::size_t k = 0; k < wanted.size(); ++k) {
       const std::size_t c = index[k];

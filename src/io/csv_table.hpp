@@ -29,7 +29,7 @@ struct CsvColumns {
 };
 
 // Throws InputError ("FILE:LINE: ...") for a missing file, a missing column, a non-numeric value.
-// With every column numbered, a first line whose cells there are numbers is data, not a header.
+// With every column numbered, a first line with a number in any of those cells is data, not a header.
 CsvColumns read_csv_columns(const std::string& file, const std::vector<CsvColumn>& columns);
 
 // The fields of one CSV line; quotes removed, spaces around unquoted fields trimmed. Throws

@@ -59,8 +59,7 @@ AccelerationRecord read_at2(const std::string& file) {
   std::string line;
   for (int k = 0; k < 3; ++k)
     if (!in.next(line))
-      throw InputError(where(file, in.number() + 1) +
-                       "AT2 header ends early (3 text lines, then NPTS= n, DT= dt SEC)");
+      throw InputError(where(file, in.number() + 1) + "AT2 header ends early (3 text lines, then NPTS= n, DT= dt SEC)");
   if (!in.next(line)) throw InputError(where(file, 4) + "missing the line NPTS= n, DT= dt SEC");
   double npts = -1, dt = -1;  // read as numbers: an absurd count is named, not wrapped
   {
@@ -115,15 +114,17 @@ AccelerationRecord read_acceleration_columns(const std::string& file, double to_
     const auto cells = words(line, true);
     if (cells.empty()) continue;
     double t, a;
-    const bool numeric = cells.size() >= 2 && parse_number(cells[0], t) && parse_number(cells[1], a);
-    if (!numeric && header_allowed) {  // one header line of column names
+    const bool t_number = parse_number(cells[0], t);
+    const bool a_number = cells.size() >= 2 && parse_number(cells[1], a);
+    // One header line of column names: no number among its first two words (a broken first row of a
+    // header-less file is an error, not a header).
+    if (header_allowed && !t_number && !a_number) {
       header_allowed = false;
       continue;
     }
     if (cells.size() < 2) throw InputError(in.where() + "expected two columns: time, acceleration");
-    if (!numeric)
-      throw InputError(in.where() + "not a number: '" + printable(parse_number(cells[0], t) ? cells[1] : cells[0]) +
-                       "'");
+    if (!t_number || !a_number)
+      throw InputError(in.where() + "not a number: '" + printable(t_number ? cells[1] : cells[0]) + "'");
     if (r.t.size() >= kMaxRecordPoints)
       throw InputError(in.where() + "more than " + std::to_string(kMaxRecordPoints) + " points");
     header_allowed = false;

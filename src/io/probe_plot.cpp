@@ -35,8 +35,7 @@ std::string field_unit(const std::string& f) {
   return "-";
 }
 
-std::vector<std::string> plot_probes(const std::string& dir, const std::vector<std::string>& quantities) {
-  const std::string csv = dir + "/probes.csv";
+std::vector<std::pair<std::size_t, std::string>> probe_columns(const std::string& csv, const std::string& q) {
   if (!std::filesystem::is_regular_file(csv))
     throw OutputError("cannot plot: " + csv + " does not exist (a model with probes and m:output writes it)");
   TextLines in(csv);
@@ -50,19 +49,27 @@ std::vector<std::string> plot_probes(const std::string& dir, const std::vector<s
   }
   if (columns.size() < 2 || columns[0] != "time (s)")
     throw OutputError(csv + ":1: not a probes file (the first column must be 'time (s)')");
+  std::vector<std::pair<std::size_t, std::string>> out;
+  for (std::size_t c = 1; c < columns.size(); ++c) {
+    const auto dot = columns[c].rfind('.');
+    if (dot != std::string::npos && columns[c].substr(dot + 1) == q) out.emplace_back(c + 1, columns[c].substr(0, dot));
+  }
+  return out;
+}
+
+std::vector<std::string> plot_probes(const std::string& dir, const std::vector<std::string>& quantities) {
+  const std::string csv = dir + "/probes.csv";
+  probe_columns(csv, "");  // a probes file, before gnuplot is looked for
   require_gnuplot();
 
   std::vector<std::string> written;
   for (const auto& q : quantities) {
     std::ostringstream plot;
-    int curves = 0;
-    for (std::size_t c = 1; c < columns.size(); ++c) {
-      const auto dot = columns[c].rfind('.');
-      if (dot == std::string::npos || columns[c].substr(dot + 1) != q) continue;
-      plot << (curves++ ? ", \\\n     " : "plot ") << gnuplot_quote(csv) << " every ::1 using 1:" << c + 1
-           << " with lines lw 2 title " << gnuplot_quote(columns[c].substr(0, dot));
-    }
-    if (curves == 0) throw InputError("cannot plot '" + q + "': no probe column ends in ." + q + " in " + csv);
+    const auto curves = probe_columns(csv, q);
+    for (const auto& [column, probe] : curves)
+      plot << (column == curves.front().first ? "plot " : ", \\\n     ") << gnuplot_quote(csv)
+           << " every ::1 using 1:" << column << " with lines lw 2 title " << gnuplot_quote(probe);
+    if (curves.empty()) throw InputError("cannot plot '" + q + "': no probe column ends in ." + q + " in " + csv);
     const std::string png = dir + "/probe_" + q + ".png";
     std::ostringstream script;
     script << "set terminal pngcairo size 960,540 noenhanced font 'sans,11'\n"

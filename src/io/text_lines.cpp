@@ -18,7 +18,7 @@ constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
 TextLines::TextLines(std::string file) : file_(std::move(file)), in_(std::fopen(file_.c_str(), "rb"), &std::fclose) {
   if (!in_) throw InputError(file_ + ": cannot open (" + std::strerror(errno) + ")");
-  struct stat st{};
+  struct stat st {};
   if (fstat(fileno(in_.get()), &st) == 0 && S_ISREG(st.st_mode)) size_ = static_cast<std::uintmax_t>(st.st_size);
   chunk_.resize(kChunk);
 }
@@ -48,8 +48,8 @@ bool TextLines::next(std::string& line) {
     const std::size_t n = nl ? static_cast<std::size_t>(nl - start) : end_ - pos_;
     if (line.size() + n > kMaxLine) {
       ++number_;
-      throw InputError(where() + "line longer than 1 MiB (it starts '" + printable(line + std::string(start, n < 40 ? n : 40)) +
-                       "'): not a text record or table");
+      throw InputError(where() + "line longer than 1 MiB (it starts '" +
+                       printable(line + std::string(start, n < 40 ? n : 40)) + "'): not a text record or table");
     }
     line.append(start, n);
     pos_ += n;

@@ -96,6 +96,93 @@ TEST_CASE("bad records are refused naming the file and the line", "[io][ground_m
   CHECK_THROWS_WITH(parse_baseline("cubic"), Catch::Contains("none|linear|quadratic"));
 }
 
+TEST_CASE("records in any encoding: a BOM and CRLF read, the first row of a header-less file kept",
+          "[io][ground_motion][robustness]") {
+  SECTION("AT2 with a BOM and CRLF") {
+    const auto r = read_at2(write_temp("seismpm_bom.AT2",
+                                       "\xEF\xBB\xBFPEER\r\nB\r\nC\r\nNPTS= 3, DT= 0.01 SEC\r\n"
+                                       "0.1 0.2\r\n0.3\r\n"));
+    REQUIRE(r.a.size() == 3);
+    CHECK(r.a[0] == Approx(0.1 * kStandardGravity));
+    CHECK(r.a[2] == Approx(0.3 * kStandardGravity));
+    CHECK(r.t[2] == Approx(0.02));
+  }
+  SECTION("two columns with a BOM and no header: the first row is data") {
+    for (const std::string sep : {",", " ", "\t", ";"}) {
+      CAPTURE(sep);
+      const auto r = read_acceleration_columns(write_temp("seismpm_bom_cols.txt",
+                                                          "\xEF\xBB\xBF"
+                                                          "0" +
+                                                              sep + "5\r\n0.1" + sep + "6\r\n0.2" + sep + "7\r\n"),
+                                               1.0);
+      CHECK(r.t == std::vector<double>{0, 0.1, 0.2});
+      CHECK(r.a == std::vector<double>{5, 6, 7});
+    }
+  }
+  SECTION("two columns with a BOM and a header line") {
+    const auto r =
+        read_acceleration_columns(write_temp("seismpm_bom_head.csv", "\xEF\xBB\xBFtime,acc\r\n0,5\r\n0.1,6\r\n"), 1.0);
+    CHECK(r.a == std::vector<double>{5, 6});
+  }
+}
+
+TEST_CASE("records: NUL bytes, tails and absurd counts are errors naming the file and the line",
+          "[io][ground_motion][robustness]") {
+  using namespace std::string_literals;
+  const std::string h = "A\nB\nC\n";
+  SECTION("NUL bytes and tails after a number") {
+    CHECK_THROWS_WITH(read_at2(write_temp("n1.AT2", h + "NPTS= 3, DT= 0.01 SEC\n1 1.5\0\0 3\n"s)),
+                      Catch::Contains("n1.AT2:5: '1.5\\x00\\x00' is not a number"));
+    CHECK_THROWS_WITH(read_at2(write_temp("n2.AT2", h + "NPTS= 3, DT= 0.01 SEC\n1 2\n3g\n")),
+                      Catch::Contains("n2.AT2:6: '3g' is not a number"));
+    CHECK_THROWS_WITH(read_acceleration_columns(write_temp("n3.csv", "0,0\n0.1,1.5\0\0\n"s), 1.0),
+                      Catch::Contains("n3.csv:2: not a number: '1.5\\x00\\x00'"));
+    // A broken first row of a header-less file is named, not skipped as a header.
+    CHECK_THROWS_WITH(read_acceleration_columns(write_temp("n4.csv", "0,1.5\0\0\n0.1,2\n0.2,3\n"s), 1.0),
+                      Catch::Contains("n4.csv:1: not a number: '1.5\\x00\\x00'"));
+    CHECK_THROWS_WITH(read_acceleration_columns(write_temp("n5.csv", "0 2.5e\n0.1 2\n"), 1.0),
+                      Catch::Contains("n5.csv:1: not a number: '2.5e'"));
+  }
+  SECTION("counts no file can hold, and counts that are no whole numbers") {
+    for (const std::string npts : {"999999999999", "1e300", "50000000"}) {
+      CAPTURE(npts);
+      try {
+        read_at2(write_temp("big.AT2", h + "NPTS= " + npts + ", DT= 0.01 SEC\n1 2 3\n"));
+        FAIL("no error");
+      } catch (const InputError& e) {  // never std::bad_alloc or a length_error
+        CHECK_THAT(e.what(), Catch::Contains("big.AT2:4: NPTS= ") && Catch::Contains(" is more than"));
+      }
+    }
+    for (const std::string npts : {"-3", "2.5", "nan", "inf", "1", "12abc"}) {
+      CAPTURE(npts);
+      CHECK_THROWS_WITH(read_at2(write_temp("bad.AT2", h + "NPTS= " + npts + ", DT= 0.01 SEC\n1 2 3\n")),
+                        Catch::Contains("bad.AT2:4: expected 'NPTS= n, DT= dt SEC'"));
+    }
+  }
+  SECTION("a line over the cap") {
+    const auto file = write_temp("long.AT2", h + "NPTS= 3, DT= 0.01 SEC\n" + std::string(2u << 20, '1'));
+    CHECK_THROWS_WITH(read_at2(file), Catch::Contains("long.AT2:5: line longer than 1 MiB"));
+  }
+}
+
+TEST_CASE("record and table errors reach Lua with the file and the line", "[io][ground_motion][lua][robustness]") {
+  using namespace std::string_literals;
+  const std::string csv = write_temp("seismpm_lua_bad.csv", "t,v\r\n0,1\r\n1,1.5\0\0\r\n"s);
+  const std::string at2 = write_temp("seismpm_lua_bad.AT2", "A\nB\nC\nNPTS= 999999999999, DT= 0.01 SEC\n1\n");
+  const std::string cols = write_temp("seismpm_lua_bad.txt",
+                                      "\xEF\xBB\xBF"
+                                      "0 1\n1 x\n");
+  test::LuaFixture f;
+  CHECK_THAT(f.error_of("mpm.history.csv{ file = '" + csv + "', time = 't', value = 'v' }"),
+             Catch::Contains(csv + ":3: column 'v' is not a number ('1.5\\x00\\x00')"));
+  CHECK_THAT(f.error_of("mpm.history.csv{ file = '" + csv + "', time = 1, value = 2 }"),
+             Catch::Contains(csv + ":3: column 2 is not a number"));
+  CHECK_THAT(f.error_of("mpm.history.at2{ file = '" + at2 + "' }"),
+             Catch::Contains(at2 + ":4: NPTS= 999999999999 is more than"));
+  CHECK_THAT(f.error_of("mpm.history.at2{ file = '" + cols + "', units = 'gal' }"),
+             Catch::Contains(cols + ":2: not a number: 'x'"));
+}
+
 TEST_CASE("records from Lua: units, scale, peak, duration, write_csv", "[io][ground_motion][lua]") {
   const std::string file =
       write_temp("seismpm_record.txt", "# time (s)  acceleration (gal)\n0 0\n1 100\n2 0\n3 -100\n4 0\n");

@@ -8,14 +8,19 @@
 #include <vtkXMLUnstructuredGridReader.h>
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 #include <regex>
 #include <sstream>
 
+#include "core/history.hpp"
 #include "io/atomic_file.hpp"
+#include "io/csv_table.hpp"
 #include "io/output.hpp"
 #include "io/probe_plot.hpp"
+#include "io/text_lines.hpp"
 #include "lua/lua_fixture.hpp"
 #include "materials/linear_elastic.hpp"
 
@@ -58,6 +63,40 @@ std::vector<std::string> lines_of(const std::string& path) {
   std::vector<std::string> lines;
   for (std::string l; std::getline(in, l);) lines.push_back(l);
   return lines;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+ino_t inode_of(const std::string& path) {
+  struct stat st {};
+  REQUIRE(stat(path.c_str(), &st) == 0);
+  return st.st_ino;
+}
+
+// `before` without its last row (which may be written again) begins `after`: rows were added, not
+// the file rewritten differently.
+bool extends(const std::string& before, const std::string& after) {
+  const auto cut = before.size() < 2 ? 0 : before.rfind('\n', before.size() - 2) + 1;
+  return after.compare(0, cut, before, 0, cut) == 0;
+}
+
+// A block in a unit box, falling; and a rigid base under it that stays.
+std::unique_ptr<Model<2>> block_on_base(const std::string& base_name) {
+  ModelSettings<2> s;
+  s.cell = 0.05;
+  s.gravity = Vec<2>(0.0, -9.81);
+  auto m = std::make_unique<Model<2>>(s);
+  const int mat = m->add_material(std::make_shared<LinearElastic>(2000.0, 1e7, 0.3));
+  m->fill_box(m->add_body("block", 2), mat, Vec<2>(0.3, 0.5), Vec<2>(0.7, 0.9));
+  std::array<std::shared_ptr<const History>, 2> v = {std::make_shared<ConstantHistory>(0.0),
+                                                     std::make_shared<ConstantHistory>(0.0)};
+  m->fill_box(m->add_rigid_body(base_name, 2, 2000, v), -1, Vec<2>(0.1, 0.05), Vec<2>(0.9, 0.1));
+  return m;
 }
 
 }  // namespace
@@ -324,4 +363,123 @@ TEST_CASE("particle files are in id order across the kernel's sorts, id the glob
   CHECK(worst == 0.0);
   CHECK(last->GetFieldData()->GetArray("TimeValue")->GetTuple1(0) == Approx(0.2));
   CHECK(last->GetFieldData()->GetArray("phase_time")->GetTuple1(0) == Approx(0.1));
+}
+
+TEST_CASE("probes.csv grows by appended rows and always equals the whole table", "[io][probes][robustness]") {
+  const std::string dir = fresh_dir("probes_append");
+  const std::string csv = dir + "/probes.csv";
+  auto model = block_on_base("base");
+  auto& m = *model;
+  OutputSettings settings;
+  settings.dir = dir;
+  Output<2> out(settings);
+  // Names that a naive CSV writer would split or break: a comma, quotes.
+  std::vector<std::shared_ptr<Probe<2>>> probes = {std::make_shared<Probe<2>>(m, "a,b", 0),
+                                                   std::make_shared<Probe<2>>(m, "say \"hi\"", 5)};
+  out.write(m, probes, "run");
+  ino_t inode = inode_of(csv);
+  std::string text = read_text(csv);
+  REQUIRE(text == probes_csv_text(probes));
+  // After each write: the file is what a whole rewrite gives, it is the same file (appended in place,
+  // not renamed over), and what was on file before is still there.
+  auto check_write = [&](const std::string& what) {
+    const std::string now = read_text(csv);
+    CAPTURE(what, m.time());
+    CHECK(now == probes_csv_text(probes));
+    CHECK(inode_of(csv) == inode);
+    CHECK(extends(text, now));
+    text = now;
+  };
+  SECTION("many outputs, the probes sampled at different times") {
+    for (int k = 1; k <= 58; ++k) {  // the last output at a time the second probe has no sample
+      m.step();
+      probes[0]->sample(m);
+      if (k % 3 == 0) probes[1]->sample(m);
+      if (k % 2 == 0) {
+        out.write(m, probes, "run");
+        check_write("output " + std::to_string(k / 2));
+      }
+    }
+    CHECK(lines_of(csv).size() == 60u);  // the header and a row per step (and t = 0)
+    SECTION("a probe sampled at a row time already written fills that row in") {
+      const std::string last_row = lines_of(csv).back();
+      probes[1]->sample(m);  // as at a run's end, after the output at the same time
+      out.write_probes(probes);
+      check_write("row filled in");
+      CHECK(lines_of(csv).size() == 60u);
+      CHECK(lines_of(csv).back() != last_row);
+      out.write_probes(probes);  // nothing new: nothing changes
+      check_write("nothing new");
+    }
+    SECTION("a probe added between runs: the table is written whole once, then appended again") {
+      probes.push_back(std::make_shared<Probe<2>>(m, "third", 10));
+      m.step();
+      for (auto& p : probes) p->sample(m);
+      out.write(m, probes, "run");
+      CHECK(read_text(csv) == probes_csv_text(probes));
+      inode = inode_of(csv);
+      text = read_text(csv);
+      for (int k = 0; k < 10; ++k) {
+        m.step();
+        for (auto& p : probes) p->sample(m);
+        out.write(m, probes, "run");
+        check_write("after the new probe");
+      }
+    }
+    SECTION("the columns read back by their quoted names; seismpm plot takes the same columns") {
+      const auto c = read_csv_columns(csv, {"time (s)", "a,b.ux", "a,b.y"});
+      REQUIRE(c.columns[0].size() == probes[0]->samples());
+      const auto ux = probes[0]->series(Field::Ux), y = probes[0]->series(Field::Y);
+      for (std::size_t k = 0; k < ux.size(); ++k) {
+        CAPTURE(k);
+        CHECK(c.columns[0][k] == Approx(probes[0]->times()[k]));
+        CHECK(c.columns[1][k] == Approx(ux[k]).margin(1e-12));
+        CHECK(c.columns[2][k] == Approx(y[k]));
+      }
+      // Column numbers from the field order, independent of any CSV parsing: time, then each probe's fields.
+      const auto fields = particle_fields(2);
+      const std::size_t ux_at = std::find(fields.begin(), fields.end(), Field::Ux) - fields.begin();
+      const auto columns = probe_columns(csv, "ux");
+      using Column = std::pair<std::size_t, std::string>;
+      CHECK(columns == std::vector<Column>{{2 + ux_at, "a,b"}, {2 + fields.size() + ux_at, "say \"hi\""}});
+    }
+  }
+}
+
+TEST_CASE("reactions.csv grows by appended rows, quoted names keeping their columns", "[io][reactions][robustness]") {
+  const std::string dir = fresh_dir("reactions_append");
+  const std::string csv = dir + "/reactions.csv";
+  auto model = block_on_base("ba\"se,1");
+  auto& m = *model;
+  OutputSettings settings;
+  settings.dir = dir;
+  Output<2> out(settings);
+  out.write(m, {}, "gravity, settling");
+  const ino_t inode = inode_of(csv);
+  std::string text = read_text(csv);
+  for (int k = 1; k <= 30; ++k) {
+    m.step();
+    out.write(m, {}, "dynamic");
+    const std::string now = read_text(csv);
+    CAPTURE(k);
+    CHECK(inode_of(csv) == inode);
+    CHECK(now.compare(0, text.size(), text) == 0);  // every earlier byte unchanged
+    text = now;
+  }
+  TextLines in(csv);
+  std::string line;
+  REQUIRE(in.next(line));
+  CHECK(split_csv_fields(line) ==
+        std::vector<std::string>{"time (s)", "phase", "ba\"se,1.fx (N/m)", "ba\"se,1.fy (N/m)"});
+  int rows = 0;
+  while (in.next(line)) {
+    const auto cells = split_csv_fields(line);
+    CAPTURE(line);
+    CHECK(cells.size() == 4u);
+    CHECK(cells[1] == (rows == 0 ? "gravity, settling" : "dynamic"));
+    ++rows;
+  }
+  CHECK(rows == 31);
+  const auto c = read_csv_columns(csv, {"time (s)", "ba\"se,1.fy (N/m)"});
+  CHECK(c.columns[0].back() == Approx(m.time()));
 }
