@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "console.hpp"
-#include "thread_waiting.hpp"
 #include "io/probe_plot.hpp"
 #include "io/progress.hpp"
 #include "lua/api_docs.hpp"
 #include "lua/runtime.hpp"
+#include "thread_waiting.hpp"
 
 #ifndef SEISMPM_SOURCE_LUA_DIR
 #define SEISMPM_SOURCE_LUA_DIR ""
