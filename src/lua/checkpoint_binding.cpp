@@ -66,6 +66,9 @@ int restart(lua_State* L) {
   check_readable(L, file, "key 'file'");
   const SuppliedHistories histories = histories_argument(a);
   const CheckpointReader checkpoint(file);
+  // The restore creates, locks and rewrites files in the checkpoint's output directory: a checkpoint
+  // is data, and under --sandbox the directory it names must be one the run may write to.
+  if (const auto dir = checkpoint_output_dir(checkpoint)) check_output_dir(L, *dir, "checkpoint's output");
   auto handle = std::make_shared<ModelHandle>(checkpoint_settings<2>(checkpoint));
   restore_checkpoint(checkpoint, handle->simulation, histories);
   if (const Output<2>* output = handle->simulation.output()) allow_writes_under(L, output->settings().dir);

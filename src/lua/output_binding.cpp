@@ -47,6 +47,7 @@ int model_output(lua_State* L) {
   const Session& command_line = session(L);
   s.dir = a.has("dir") || command_line.out_dir.empty() ? a.string("dir") : command_line.output_dir("");
   refuse_control_characters(s.dir, "key 'dir'");  // m:plot hands it to gnuplot
+  check_output_dir(L, s.dir, "key 'dir'");
   s.every = a.number("every");
   s.grid = a.boolean("grid");
   const bool at_run_end = a.boolean("at_run_end");

@@ -388,15 +388,31 @@ void check_writable(lua_State* L, const std::string& file, const char* what) {
   if (std::string why = refusal(session(L), file, Access::Write, what); !why.empty()) throw Error(why);
 }
 
+namespace {
+// Where a sandboxed run may put an output directory: inside the working directory (outside hidden
+// folders) or inside the --out directory.
+bool output_dir_allowed(const Session& s, const std::optional<fs::path>& d) {
+  if (!d) return false;
+  std::error_code ec;
+  const auto cwd = root_path(fs::current_path(ec).string());
+  const auto out = root_path(s.out_dir);
+  return (cwd && inside(*d, *cwd, true)) || (out && inside(*d, *out));
+}
+}  // namespace
+
+void check_output_dir(lua_State* L, const std::string& dir, const char* what) {
+  if (!sandboxed(L)) return;
+  if (!output_dir_allowed(session(L), root_path(dir)))
+    throw Error(std::string(what) + ": the output directory '" + dir +
+                "' is outside the working directory and the --out directory: under --sandbox a run writes only "
+                "there");
+}
+
 void allow_writes_under(lua_State* L, const std::string& dir) {
   if (!sandboxed(L)) return;
   Session& s = session(L);
   const auto d = root_path(dir);
-  if (!d) return;
-  std::error_code ec;
-  const auto cwd = root_path(fs::current_path(ec).string());
-  const auto out = root_path(s.out_dir);
-  if ((cwd && inside(*d, *cwd, true)) || (out && inside(*d, *out))) s.writable_dirs.push_back(d->string());
+  if (output_dir_allowed(s, d)) s.writable_dirs.push_back(d->string());
 }
 
 }  // namespace seismpm::lua

@@ -32,4 +32,9 @@ void check_writable(lua_State* L, const std::string& file, const char* what);
 // the script's own files.
 void allow_writes_under(lua_State* L, const std::string& dir);
 
+// Under --sandbox: throws Error naming `what` unless `dir` may be an output directory (inside the working
+// directory, outside hidden folders, or inside the --out directory): the run's own files (particle
+// files, tables, checkpoints) are written there. Does nothing without the sandbox.
+void check_output_dir(lua_State* L, const std::string& dir, const char* what);
+
 }  // namespace seismpm::lua

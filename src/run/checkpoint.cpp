@@ -246,8 +246,9 @@ class CheckpointAccess {
     s.max_dilation = r.f64();
     s.crack_closure = r.boolean();
     s.profile = r.boolean();
+    s.check_memory = r.boolean();
     r.finish();
-    // A domain of more cells than memory holds would fail in the grid's allocation, not here.
+    // A domain of more cells than memory holds is refused by the model's memory check (check_memory).
     double cells = 1.0;
     for (int d = 0; d < Dim; ++d) cells *= (s.upper[d] - s.lower[d]) / s.cell;
     if (!(s.cell > 0.0) || !(cells > 0.0) || cells > 1e9)
@@ -314,6 +315,7 @@ class CheckpointAccess {
     w.f64(s.max_dilation);
     w.boolean(s.crack_closure);
     w.boolean(s.profile);
+    w.boolean(s.check_memory);
   }
 
   static void write_materials(SectionWriter& w, const Model<Dim>& m) {
@@ -711,6 +713,12 @@ void write_checkpoint(const Simulation<Dim>& simulation, const std::string& path
   } catch (const CheckpointError& e) {
     throw CheckpointError(std::string(e.what()) + " (writing " + path + ")");
   }
+}
+
+std::optional<std::string> checkpoint_output_dir(const CheckpointReader& file) {
+  SectionReader r = file.section(kOutput);
+  if (!r.boolean()) return std::nullopt;
+  return r.text();
 }
 
 template <int Dim>

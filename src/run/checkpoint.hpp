@@ -13,6 +13,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,11 @@ std::string velocity_history_key(const std::string& body, int axis);
 // a kind the format does not know).
 template <int Dim>
 void write_checkpoint(const Simulation<Dim>& simulation, const std::string& path);
+
+// The output directory the checkpoint's simulation writes to (none: no output), read without restoring
+// anything: a restore creates, locks and rewrites files in it, so a caller that confines writes checks
+// it first.
+std::optional<std::string> checkpoint_output_dir(const CheckpointReader& file);
 
 // The checkpoint's model settings: what the simulation to restore into is built with.
 template <int Dim>

@@ -127,4 +127,16 @@ TEST_CASE("checkpoint binding: damaged files and the sandbox's folders", "[lua][
              Contains("key 'file'") && Contains("--sandbox"));
   CHECK(sandboxed.error_of("mpm.restart{ file = " + quoted((out / "ok.chk").string()) +
                            ", histories = { ['base.vx'] = 0 } }") == "");
+
+  // A checkpoint is data: one that names an output directory outside the sandbox's is refused before
+  // the restore creates or rewrites anything there.
+  const fs::path victim = temp_dir("sandbox_victim");
+  test::LuaFixture unconfined;
+  REQUIRE(unconfined.error_of(model_code(victim.string()) + "m:checkpoint{ file = " +
+                              quoted((out / "elsewhere.chk").string()) + " }\nm = nil; collectgarbage()") == "");
+  fs::remove(victim / "particles.pvd");
+  CHECK_THAT(sandboxed.error_of("mpm.restart{ file = " + quoted((out / "elsewhere.chk").string()) +
+                                ", histories = { ['base.vx'] = 0 } }"),
+             Contains("checkpoint's output: the output directory '" + victim.string() + "' is outside"));
+  CHECK_FALSE(fs::exists(victim / "particles.pvd"));
 }

@@ -405,8 +405,10 @@ TEST_CASE("sandbox: an m:output dir inside the working directory opens it for wr
       assert(fh == nil, "not before m:output made it an output directory")
       m:output{ dir = "seismpm_robustness_out" }
       assert(io.open("seismpm_robustness_out/summary.txt", "w")):close()
-      m:output{ dir = )" +
-                     quoted(elsewhere.path.string()) + R"( }  -- the writer writes there, the script may not
+      -- an output directory elsewhere is refused: the run's own files would land outside
+      local ok, why = pcall(m.output, m, { dir = )" +
+                     quoted(elsewhere.path.string()) + R"( })
+      assert(not ok and why:find("is outside the working directory and the --out directory", 1, true), why)
       fh, err = io.open(")" +
                      elsewhere.path.string() + R"(/summary.txt", "w")
       assert(fh == nil and err:find("may write under --sandbox", 1, true), err)
@@ -422,6 +424,7 @@ TEST_CASE("sandbox: an m:output dir inside the working directory opens it for wr
   CHECK(fs::exists(inside / "summary.txt"));
   CHECK(fs::exists(by_default / "a.txt"));
   CHECK_FALSE(fs::exists(elsewhere.path / "summary.txt"));
+  CHECK_FALSE(fs::exists(elsewhere.path / "particles.pvd"));
   CHECK_FALSE(fs::exists(fs::current_path() / "seismpm_robustness_cwd_file.txt"));
   fs::remove_all(inside);
   fs::remove_all(by_default);
