@@ -93,6 +93,7 @@ void install_interrupt_handler(lua::Runtime& runtime) {
 }
 
 int run_console(lua::Runtime& runtime) {
+  runtime.clear_interrupt();  // a Ctrl-C that stopped the script (-i) must not stop completion
   const bool terminal = isatty(STDIN_FILENO);
   const std::string hist = history_file();
   if (terminal) {
