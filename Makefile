@@ -8,9 +8,9 @@ JOBS       ?= $(shell nproc 2>/dev/null || echo 2)
 CMAKE_ARGS ?=
 
 # Debian 12 packages the build needs (compiler, CMake, Eigen, Catch2, Lua 5.4, readline, CLI11, VTK 9.1;
-# OpenMP comes with g++) and gnuplot for the plots.
+# OpenMP comes with g++), gnuplot for the plots, python3 for the tests that drive the console on a terminal.
 PACKAGES = g++ make cmake pkg-config libeigen3-dev catch2 liblua5.4-dev libreadline-dev libcli11-dev \
-           libvtk9-dev gnuplot-nox
+           libvtk9-dev gnuplot-nox python3
 
 .PHONY: all deps configure build run test sanitize bench clean
 

@@ -1,9 +1,11 @@
 #include "console.hpp"
 
+#include <poll.h>
 #include <readline/history.h>
 #include <readline/readline.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -16,9 +18,28 @@ namespace seismpm {
 namespace {
 
 lua::Runtime* g_runtime = nullptr;
+// Ctrl-C while the console waits for a line: the line and the entry pending at ">> " are dropped.
+volatile std::sig_atomic_t g_reading = 0, g_interrupted_at_prompt = 0;
 
 void on_interrupt(int) {
+  if (g_reading) g_interrupted_at_prompt = 1;
   if (g_runtime) g_runtime->interrupt();
+}
+
+// readline's key reader: readline's own, except that Ctrl-C at the prompt ends the line (as Return
+// would; the console drops it). readline's rl_getc would go on reading after the signal, with the text
+// typed so far still there. Waiting here, outside rl_getc, sees the signal: readline caught it (it shows
+// ^C and passes it on to on_interrupt once this returns).
+int read_key(FILE* in) {
+  for (;;) {
+    rl_check_signals();  // any other signal caught meanwhile (a resized window)
+    pollfd p{fileno(in), POLLIN, 0};
+    if (poll(&p, 1, -1) >= 0 || errno != EINTR) return rl_getc(in);
+    if (rl_pending_signal() == SIGINT || g_interrupted_at_prompt) {
+      g_interrupted_at_prompt = 1;
+      return '\n';
+    }
+  }
 }
 
 // Completion through the runtime (the Lua library's mpm._complete).
@@ -38,15 +59,27 @@ std::string history_file() {
   return home ? std::string(home) + "/.seismpm_history" : std::string();
 }
 
-bool read_line(bool terminal, const char* prompt, std::string& line) {
+// Reads a line; false at the end of the input. `interrupted`: Ctrl-C came instead of the line's end.
+bool read_line(bool terminal, const char* prompt, std::string& line, bool& interrupted) {
+  g_interrupted_at_prompt = 0;
+  g_reading = 1;
+  bool got;
   if (terminal) {
     char* raw = readline(prompt);
-    if (!raw) return false;
-    line = raw;
+    got = raw != nullptr;
+    line = raw ? raw : "";
     std::free(raw);
-    return true;
+  } else {
+    got = static_cast<bool>(std::getline(std::cin, line));
+    if (!got && g_interrupted_at_prompt && !std::feof(stdin)) {  // a read cut short by the signal
+      std::cin.clear();
+      std::clearerr(stdin);
+      got = true;
+    }
   }
-  return static_cast<bool>(std::getline(std::cin, line));
+  g_reading = 0;
+  interrupted = g_interrupted_at_prompt != 0;
+  return got || interrupted;
 }
 
 }  // namespace
@@ -60,10 +93,12 @@ void install_interrupt_handler(lua::Runtime& runtime) {
 }
 
 int run_console(lua::Runtime& runtime) {
+  runtime.clear_interrupt();  // a Ctrl-C that stopped the script (-i) must not stop completion
   const bool terminal = isatty(STDIN_FILENO);
   const std::string hist = history_file();
   if (terminal) {
     rl_readline_name = "seismpm";
+    rl_getc_function = read_key;
     rl_attempted_completion_function = complete;
     rl_basic_word_break_characters = const_cast<char*>(" \t\n\"'()[]{},;=+-*/<>~#");
     // append_history needs the file to exist.
@@ -72,7 +107,14 @@ int run_console(lua::Runtime& runtime) {
                 lua::Runtime::lua_version());
   }
   std::string chunk, line, output;
-  while (read_line(terminal, chunk.empty() ? "seismpm> " : ">> ", line)) {
+  bool interrupted = false;
+  while (read_line(terminal, chunk.empty() ? "seismpm> " : ">> ", line, interrupted)) {
+    if (interrupted) {  // a fresh entry: nothing typed before Ctrl-C runs
+      runtime.clear_interrupt();
+      if (!chunk.empty() && !terminal) std::fprintf(stderr, "(Ctrl-C: the unfinished entry was dropped)\n");
+      chunk.clear();
+      continue;
+    }
     chunk += (chunk.empty() ? "" : "\n") + line;
     if (chunk.find_first_not_of(" \t") == std::string::npos) {
       chunk.clear();

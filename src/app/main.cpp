@@ -194,7 +194,7 @@ int run_lua(const CommandLine& cl, seismpm::lua::Session& session, const char* a
       std::fprintf(stderr, "seismpm: cannot open %s: no such file\n", cl.script.c_str());
       return 1;
     }
-    ok = runtime.run_file(cl.script, cl.script_args);
+    ok = runtime.run_file(cl.script, cl.script_args, cl.interactive);  // -i: its locals stay for the console
   }
   if (cl.interactive || (cl.script.empty() && cl.chunks.empty())) return seismpm::run_console(runtime);
   return ok ? 0 : 1;

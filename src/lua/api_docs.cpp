@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <map>
 #include <sstream>
 
@@ -182,6 +183,79 @@ std::string help_text(const Function& f) {
   }
   os << "  example: " << f.example << "\n";
   return os.str();
+}
+
+std::string summary_line(const Function& f) {
+  constexpr std::size_t kWidth = 100;
+  const std::string text = f.summary;
+  std::size_t end = text.size(), depth = 0, soft = std::string::npos;  // soft: a ": " or "; " to cut at
+  for (std::size_t i = 0; i + 1 < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '(' || c == '{') ++depth;
+    if ((c == ')' || c == '}') && depth > 0) --depth;
+    if (depth == 0 && text[i + 1] == ' ' && c == '.') {
+      end = i + 1;
+      break;
+    }
+    // Not before the middle: "A control point: follows ..." says more with the words after the colon.
+    if (depth == 0 && text[i + 1] == ' ' && (c == ':' || c == ';') && i >= kWidth / 2 && i < kWidth &&
+        soft == std::string::npos)
+      soft = i;
+  }
+  if (end <= kWidth) return text.substr(0, end);
+  if (soft != std::string::npos) return text.substr(0, soft);
+  const std::size_t space = text.rfind(' ', kWidth - 3);
+  return text.substr(0, space == std::string::npos ? kWidth - 3 : space) + "...";
+}
+
+std::string listing(const std::vector<const Function*>& functions) {
+  std::size_t width = 0;
+  for (const Function* f : functions) width = std::max(width, std::string(f->name).size());
+  std::string out;
+  for (const Function* f : functions)
+    out += "  " + std::string(f->name) + std::string(width + 2 - std::string(f->name).size(), ' ') + summary_line(*f) +
+           "\n";
+  return out;
+}
+
+namespace {
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool key_matches(const Key& k, const std::string& query) {
+  if (lower(k.name).find(query) != std::string::npos || lower(k.doc).find(query) != std::string::npos) return true;
+  if (k.type == Type::Table)
+    for (const Key& sub : k.keys)
+      if (key_matches(sub, query)) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<const Function*> search(const std::string& query) {
+  const std::string q = lower(query);
+  std::vector<const Function*> found;
+  if (q.find_first_not_of(" \t") == std::string::npos) return found;
+  for (const Function* f : api_functions()) {
+    bool hit = lower(f->name).find(q) != std::string::npos || lower(f->summary).find(q) != std::string::npos ||
+               (f->call && lower(f->call).find(q) != std::string::npos);
+    for (const Key& k : f->keys) hit = hit || key_matches(k, q);
+    if (hit) found.push_back(f);
+  }
+  return found;
+}
+
+std::string search_text(const std::string& query) {
+  const auto found = search(query);
+  if (found.empty())
+    return "nothing in the API matches '" + query +
+           "' (names, descriptions and keys were searched); help() lists "
+           "everything\n";
+  return std::to_string(found.size()) + (found.size() == 1 ? " entry matches '" : " entries match '") + query +
+         "' (help(\"name\") shows one in full):\n" + listing(found);
 }
 
 namespace {

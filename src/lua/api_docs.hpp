@@ -44,6 +44,19 @@ const Function* find_function(const std::string& name);
 std::string signature(const Function& f);
 // What help("name") shows: signature, summary, one line per key, example.
 std::string help_text(const Function& f);
+// The first sentence of its summary, shortened to about 100 characters: what a listing shows.
+std::string summary_line(const Function& f);
+// One line per function, "  name  summary line", the names aligned.
+std::string listing(const std::vector<const Function*>& functions);
+// The functions whose name, summary or keys (names and texts) hold `query`, ignoring case.
+std::vector<const Function*> search(const std::string& query);
+// What help("query") shows when no function has that name: the listing of the matches, or a line
+// saying that nothing matched.
+std::string search_text(const std::string& query);
+// What help(value) prints for the value at `index` (help_binding.cpp): the overview, one function, a table
+// of the API, an object's methods, or a search. It never raises: for a value that is not part of the API it
+// says so, and a string that names nothing is searched for.
+std::string help_for(lua_State* L, int index);
 // The whole reference as Markdown.
 std::string api_markdown();
 

@@ -84,8 +84,9 @@ const Function kSession[] = {
      "local dir = mpm.out_dir(\"out/column\")"},
 };
 
-// Message handler: adds a traceback to an error message.
-int traceback(lua_State* L) {
+}  // namespace
+
+int Runtime::traceback(lua_State* L) {
   const char* msg = lua_tostring(L, 1);
   if (!msg) {
     if (luaL_callmeta(L, 1, "__tostring") && lua_type(L, -1) == LUA_TSTRING) return 1;
@@ -94,8 +95,6 @@ int traceback(lua_State* L) {
   luaL_traceback(L, L, msg, 1);
   return 1;
 }
-
-}  // namespace
 
 std::string data_path(lua_State* L, const std::string& file) {
   namespace fs = std::filesystem;
@@ -163,16 +162,16 @@ Runtime::~Runtime() { lua_close(L_); }
 
 const char* Runtime::lua_version() { return LUA_VERSION_MAJOR "." LUA_VERSION_MINOR; }
 
-int Runtime::call(int nargs, int nresults) {
+int Runtime::call(int nargs, int nresults, int (*handler)(lua_State*)) {
   const int base = lua_gettop(L_) - nargs;
-  lua_pushcfunction(L_, traceback);
+  lua_pushcfunction(L_, handler ? handler : traceback);
   lua_insert(L_, base);
   const int status = lua_pcall(L_, nargs, nresults, base);
   lua_remove(L_, base);
   return status;
 }
 
-bool Runtime::run_file(const std::string& file, const std::vector<std::string>& args) {
+bool Runtime::run_file(const std::string& file, const std::vector<std::string>& args, bool keep_locals) {
   lua_createtable(L_, static_cast<int>(args.size()), 1);
   lua_pushstring(L_, file.c_str());
   lua_rawseti(L_, -2, 0);
@@ -187,11 +186,15 @@ bool Runtime::run_file(const std::string& file, const std::vector<std::string>& 
   lua_pop(L_, 2);
   std::error_code ec;
   session_.script_dir = std::filesystem::absolute(file, ec).parent_path().string();
-  const bool ok = luaL_loadfilex(L_, file.c_str(), "t") == LUA_OK && call(0, 0) == LUA_OK;
+  const bool loaded = luaL_loadfilex(L_, file.c_str(), "t") == LUA_OK;
+  if (loaded && keep_locals) watch_locals();
+  const bool ok = loaded && call(0, 0, keep_locals ? traceback_keeping_locals : nullptr) == LUA_OK;
   if (!ok) {
     std::fprintf(stderr, "seismpm: %s\n", lua_tostring(L_, -1));
+    std::fflush(stderr);
     lua_pop(L_, 1);
   }
+  if (loaded && keep_locals) this->keep_locals(ok);
   if (ok) warn_unread_params(L_);  // after a failure the script may not have reached its parameters
   return ok;
 }

@@ -27,8 +27,10 @@ class Runtime {
   static const char* lua_version();
 
   // Runs a file with `args` as the global `arg`; on error prints "file:line: message" and a
-  // traceback to stderr and returns false.
-  bool run_file(const std::string& file, const std::vector<std::string>& args);
+  // traceback to stderr and returns false. `keep_locals` (-i): the script's top-level locals become
+  // globals for the console afterwards, those defined before an error when it stops on one; a line
+  // on stdout names them.
+  bool run_file(const std::string& file, const std::vector<std::string>& args, bool keep_locals = false);
   // Runs a chunk; `name` appears in messages.
   bool run_string(const std::string& code, const std::string& name);
   // Runs a chunk; on failure returns false and leaves the message (with traceback) in `error`.
@@ -49,8 +51,17 @@ class Runtime {
   void clear_interrupt();
 
  private:
-  // Calls the function below `nargs` arguments with a traceback handler; returns the status.
-  int call(int nargs, int nresults);
+  // Calls the function below `nargs` arguments with a message handler (`handler`, else `traceback`);
+  // returns the status.
+  int call(int nargs, int nresults, int (*handler)(lua_State*) = nullptr);
+  // Message handler: adds a traceback to an error message.
+  static int traceback(lua_State* L);
+  // -i (runtime_console.cpp): the chunk on top of the stack is watched (a return hook, set from C) so
+  // that its top-level locals are read when it returns or, through the message handler below, where an
+  // error stops it; keep_locals then copies them into the globals and says which.
+  void watch_locals();
+  void keep_locals(bool completed);
+  static int traceback_keeping_locals(lua_State* L);
   std::string shown(int index);  // a value as the console prints it
 
   lua_State* L_;

@@ -57,6 +57,18 @@ rm -rf "$dir"
 has "interrupted (Ctrl-C) at t ="
 has "the model is intact"
 has_line "after	true	20000	true"
+# -i: the script's top-level locals are globals at the prompt, those defined before an error when it
+# stops on one; a line names them.
+dir=$(mktemp -d)
+printf 'local m = mpm.model{ domain = {{0, 0}, {1, 1}}, cell = 0.1 }\nlocal k = 2\nerror("half-way")\nlocal late = 1\n' \
+  >"$dir/stops.lua"
+out=$(printf '%s\n' 'print("kept", k, m:steps(), late)' | "$bin" -i "$dir/stops.lua" 2>&1)
+status=$?
+[ $status -eq 0 ] || fail "exit status $status with -i"
+has "half-way"
+has_line "locals kept for the console (those defined before the error): m, k"
+has_line "kept	2	0	nil"
+rm -rf "$dir"
 # Options written after the script (as the scenario headers show them) are options; other words, and
 # everything after a lone "--", reach the script in `arg`.
 dir=$(mktemp -d)
