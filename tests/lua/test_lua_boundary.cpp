@@ -116,8 +116,9 @@ TEST_CASE("a global table with a strict metatable does not break help() or the l
   CHECK(run(R"(
     setmetatable(_G, { __index = function(_, k) error("hostile strict global " .. tostring(k), 0) end })
     help(mpm.geometry.slope); help(mpm.material.linear_elastic); help()
+    -- help never raises: a value outside the API gets a message
     local ok, err = pcall(help, print)
-    assert(not ok and err:find("no help for this function"), err)
+    assert(ok, err)
   )") == "");
 }
 
