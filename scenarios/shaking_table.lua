@@ -149,7 +149,7 @@ end
 table_vx:write_csv(dir .. "/table_velocity.csv")
 print("plot: " .. mpm.plot{ file = dir .. "/table_velocity.csv", x = "t", y = {"value"},
                             title = "Horizontal velocity of the shaking table (input motion)",
-                            xlabel = "time since shaking began (s)", ylabel = "table velocity vx (m/s)" })
+                            xlabel = "time since the dynamic phase began (s)", ylabel = "table velocity vx (m/s)" })
 
 if check then
   assert(p1:get("uy") < -0.002, "the crest should settle")

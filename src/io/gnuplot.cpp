@@ -37,7 +37,7 @@ std::string svg_path(const std::string& png) {
 std::string report_style() {
   return "set datafile separator ','\n"
          "set grid\n"
-         "set key outside right top Left reverse spacing 1.2\n"
+         "set key outside below center horizontal Left reverse spacing 1.2 width 2\n"
          "set autoscale xfix\n"
          "set offsets graph 0, graph 0, graph 0.08, graph 0.08\n";
 }

@@ -15,8 +15,8 @@ std::string gnuplot_quote(const std::string& s);
 std::string svg_path(const std::string& png);
 
 // The settings every plot shares: comma-separated data, a grid, the key (legend) outside the plotting
-// area on its right, x spanning the data exactly and a margin of 8 % of the data's range above and
-// below the curves, so that no peak touches the frame. A plot's own settings come after it.
+// area, below it (the pictures are wide, the probes' names long), x spanning the data exactly and a margin of 8 % of
+// the data's range above and below the curves, so that no peak touches the frame. A plot's own settings come after it.
 std::string report_style();
 
 // The whole script of a picture: `body` (settings, then one `plot` command) drawn as a PNG into

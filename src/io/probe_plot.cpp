@@ -122,7 +122,7 @@ std::string probe_plot_body(const std::string& dir, const std::string& q,
   std::ostringstream body;
   body << "set title " << gnuplot_quote((what.empty() ? q : what) + " of the control points") << "\n"
        << "set xlabel "
-       << gnuplot_quote(shaking             ? "time since shaking began (s)"
+       << gnuplot_quote(shaking             ? "time since the dynamic phase began (s)"
                         : phases.size() > 1 ? "model time (s)"
                                             : "time (s)")
        << "\nset ylabel " << gnuplot_quote((what.empty() ? "" : what + " ") + q + " (" + field_unit(q) + ")") << "\n"

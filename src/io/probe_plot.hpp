@@ -1,8 +1,8 @@
 // Time-history plots of the probes in DIR/probes.csv, drawn with gnuplot as PNG and SVG: one picture
 // per quantity (DIR/probe_<quantity>.png and .svg) with every probe's curve, axes labelled with units.
-// The time axis is the shaking's when the run had a dynamic phase ("time since shaking began (s)",
-// the phases before it at negative times, shaded and named), the model time otherwise; the phases
-// come from DIR/phases.csv. A closed form can be drawn beside the probes as a reference curve.
+// The time axis is the shaking's when the run had a dynamic phase ("time since the dynamic phase
+// began (s)", the phases before it at negative times, shaded and named), the model time otherwise; the
+// phases come from DIR/phases.csv. A closed form can be drawn beside the probes as a reference curve.
 #pragma once
 
 #include <string>
@@ -12,7 +12,7 @@
 namespace seismpm {
 
 // A curve drawn with the probes of one quantity, dashed and black: columns x and y of a CSV file, x
-// in the plot's time axis (the time since shaking began when the run had a dynamic phase).
+// in the plot's time axis (the time since the dynamic phase began, when the run had one).
 struct ProbeReference {
   std::string quantity;  // the probe field whose picture gets the curve ("ux")
   std::string csv, x, y;

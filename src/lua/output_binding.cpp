@@ -34,7 +34,7 @@ const Key kOutputKeys[] = {
 const Key kPlotReferenceKeys[] = {
     arg::string("quantity", "the probe field whose picture gets the curve").required(),
     arg::string("file", "a CSV file with a header line").required(),
-    arg::string("x", "its column of times, in the plots' time axis (s since shaking began after a dynamic phase)")
+    arg::string("x", "its column of times, in the plots' time axis (s since the dynamic phase began, after one)")
         .required(),
     arg::string("y", "its column of values, in the quantity's unit").required(),
     arg::string("title", "the curve's key entry").shown("the y column's name"),
@@ -136,7 +136,8 @@ const Function kOutputFunctions[] = {
     {"model:plot", &guarded<model_plot>, nullptr, kPlotKeys,
      "Time histories of the probes in the output directory with gnuplot, as PNG and SVG (probe_<quantity>.png and "
      ".svg, one curve per probe, axes with units, the key outside the curves); returns the PNG file names. After a "
-     "dynamic phase the time axis is the time since shaking began, with the phases before it shaded at negative "
+     "dynamic phase the time axis is the time since it began (the shaking time), with the phases before it shaded at "
+     "negative "
      "times (phases.csv); otherwise the model time. From the shell: seismpm plot DIR ux uy.",
      "m:plot{ quantities = {\"ux\"}, reference = { quantity = \"ux\", file = dir .. \"/motion.csv\", x = \"t (s)\", "
      "y = \"closed form (m)\" } }"},

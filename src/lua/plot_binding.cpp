@@ -16,7 +16,7 @@ const Key kPlotKeys[] = {
     arg::names("reference", "columns drawn against x as dashed black reference curves (a closed form, a measurement)"),
     arg::string("png", "the picture written, with an SVG of the same name beside it").shown("the CSV's name with .png"),
     arg::string("title", "the plot's title").def_text(""),
-    arg::string("xlabel", "the x axis' label, with its unit: \"time since shaking began (s)\"").shown("x"),
+    arg::string("xlabel", "the x axis' label, with its unit: \"time since the dynamic phase began (s)\"").shown("x"),
     arg::string("ylabel", "the y axis' label, with its unit").shown("the first y column"),
     arg::string("color", "a column: one point per row at (x, y[1]) coloured by it, axes to scale").def_text(""),
 };

@@ -59,7 +59,7 @@ TEST_CASE("every picture is drawn as a PNG and an SVG beside it, in the report s
   CHECK(script.find("set terminal svg") > script.find("plot 'a.csv'"));  // the same plot, drawn again
   CHECK(contains(script, "replot"));
   // The key (legend) outside the plotting area, never over the curves; margins above and below them.
-  CHECK(contains(script, "set key outside right top"));
+  CHECK(contains(script, "set key outside below"));
   CHECK(contains(script, "set offsets graph 0, graph 0, graph 0.08, graph 0.08"));
   CHECK_FALSE(contains(script, "set key top left"));
 }
@@ -72,13 +72,13 @@ TEST_CASE("a CSV plot of one curve has no key; reference columns are dashed blac
   p.png = dir + "/table_velocity.png";
   p.x = "t";
   p.y = {"value"};
-  p.xlabel = "time since shaking began (s)";
+  p.xlabel = "time since the dynamic phase began (s)";
   p.ylabel = "table velocity vx (m/s)";
   std::string body = csv_plot_body(p);
   CHECK(contains(body, "set key off"));  // no meaningless "value" entry
   CHECK(contains(body, "using 1:2 with lines lw 2 notitle"));
   CHECK_FALSE(contains(body, "title 'value'"));
-  CHECK(contains(body, "set xlabel 'time since shaking began (s)'"));
+  CHECK(contains(body, "set xlabel 'time since the dynamic phase began (s)'"));
   CHECK(contains(body, "set ylabel 'table velocity vx (m/s)'"));
 
   write(dir + "/motion.csv", "# a comment\ntime (s),ux (m),closed form (m)\n0,0,0\n1,1.4,1.5\n");
@@ -117,7 +117,8 @@ TEST_CASE("phases.csv: each phase with its start; a phase that begins again repl
   CHECK_THROWS_WITH(read_phases(dir), Contains("phases.csv:2:"));
 }
 
-TEST_CASE("probe plots: time since shaking began, earlier phases shaded, units, a reference curve", "[io][plot]") {
+TEST_CASE("probe plots: time since the dynamic phase began, earlier phases shaded, units, a reference curve",
+          "[io][plot]") {
   const std::string dir = probes_dir("probe_plot_script");
   SECTION("without phases.csv: the model time") {
     const std::string body = probe_plot_body(dir, "ux");
@@ -129,7 +130,7 @@ TEST_CASE("probe plots: time since shaking began, earlier phases shaded, units, 
   SECTION("after a dynamic phase: its time, the gravity phase at negative times") {
     write(dir + "/phases.csv", "phase,start (s)\ngravity,0\ndynamic,0.2\n");
     const std::string body = probe_plot_body(dir, "uy");
-    CHECK(contains(body, "set xlabel 'time since shaking began (s)'"));
+    CHECK(contains(body, "set xlabel 'time since the dynamic phase began (s)'"));
     CHECK(contains(body, "using ($1 - 0.2):3 with lines lw 2 title 'crest'"));
     CHECK(contains(body, "set object 1 rectangle from first -0.2, graph 0 to first 0, graph 1 behind"));
     CHECK(contains(body, "set label 'gravity phase' at first -0.2"));
@@ -190,7 +191,7 @@ TEST_CASE("a run's plots: PNG and SVG written, phases on file, the closed form i
     CHECK_FALSE(fs::exists(svg + ".tmp"));
   }
   const std::string uy = read(dir + "/probe_uy.svg");
-  CHECK(contains(uy, "time since shaking began (s)"));
+  CHECK(contains(uy, "time since the dynamic phase began (s)"));
   CHECK(contains(uy, "gravity phase"));
   CHECK(contains(uy, "exact uy (m)"));  // the reference curve's key entry
   CHECK_FALSE(contains(read(dir + "/probe_ux.svg"), "exact uy (m)"));
