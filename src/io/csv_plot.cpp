@@ -42,9 +42,11 @@ std::string csv_plot_body(const CsvPlot& p) {
   const std::string data = gnuplot_quote(p.csv) + " every ::1 using " + std::to_string(xc) + ':';
   std::ostringstream plot;
   if (!p.color.empty()) {
-    plot << "set key off\nset size ratio -1\nset cblabel " << gnuplot_quote(p.color)
-         << "\nset palette rgb 33,13,10\nplot " << data << column(p.y.front()) << ':' << column(p.color)
-         << " with points pt 7 ps 0.35 palette notitle";
+    // A picture of the ground, to scale: a thin equal margin on every side instead of the curves' one.
+    plot << "set key off\nset size ratio -1\nset autoscale yfix\nset offsets graph 0.02, graph 0.02, graph 0.02, graph "
+            "0.02\nset cblabel "
+         << gnuplot_quote(p.color) << "\nset palette rgb 33,13,10\nplot " << data << column(p.y.front()) << ':'
+         << column(p.color) << " with points pt 7 ps 0.35 palette notitle";
     for (const auto& r : p.reference)
       plot << ", \\\n     " << data << column(r) << " with lines lw 2 dt 2 lc rgb 'black' notitle";
   } else {
