@@ -50,5 +50,8 @@ print(string.format("  period    %.5f s (exact %.5f s): error %.3f %%", measured
 print(string.format("  amplitude %.6f m/s (exact %.6f m/s): error %.3f %%", peak, amplitude, 100 * amplitude_error))
 print("  history written to " .. out .. "/centre_of_mass_velocity.csv")
 for _, png in ipairs(m:plot{ quantities = {"ux", "vx"} }) do print("  plot " .. png) end
+print("  plot " .. mpm.plot{ file = out .. "/centre_of_mass_velocity.csv", x = "time (s)", y = {"v_cm (m/s)"},
+                             reference = {"v_cm exact (m/s)"}, title = "Velocity of the bar's centre of mass",
+                             ylabel = "centre-of-mass velocity (m/s)" })
 print("  ParaView: " .. out .. "/particles.pvd")
 assert(period_error < 0.02 and amplitude_error < 0.02, "the bar is off its closed form by more than 2 %")

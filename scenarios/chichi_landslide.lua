@@ -186,7 +186,7 @@ for _, line in ipairs(lines) do
 end
 file:close()
 print("plot: " .. mpm.plot{ file = dir .. "/front.csv", x = "time (s)", y = {"front travel (m)"},
-                            title = "Chiu-fen-erh-shan: travel of the landslide front", xlabel = "time in the dynamic phase (s)",
+                            title = "Chiu-fen-erh-shan: travel of the landslide front", xlabel = "time since the dynamic phase began (s)",
                             ylabel = "front travel (m)" })
 print("plot: " .. mpm.plot{ file = dir .. "/deposit.csv", x = "x (m)", y = {"surface before (m)", "surface after (m)"},
                             title = "Chiu-fen-erh-shan: surface before and after", ylabel = "elevation (m)" })

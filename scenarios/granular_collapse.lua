@@ -123,9 +123,9 @@ end
 file = assert(io.open(out .. "/deposit.csv", "w"))
 file:write(table.concat(rows, "\n"), "\n")
 file:close()
-mpm.plot{ file = out .. "/deposit.csv", x = "x (m)", y = #measured > 0 and {"computed surface (m)", "measured surface (m)"}
-            or {"computed surface (m)"}, title = "Deposit of the collapsed column", xlabel = "x (m)",
-          ylabel = "surface height (m)" }
+mpm.plot{ file = out .. "/deposit.csv", x = "x (m)", y = {"computed surface (m)"},
+          reference = #measured > 0 and {"measured surface (m)"} or nil, title = "Deposit of the collapsed column",
+          xlabel = "x (m)", ylabel = "surface height (m)" }
 
 local lines = {
   string.format("granular collapse (%s, %g mm cells, %dx%d particles per cell): %d steps, t = %.3f s",

@@ -11,7 +11,8 @@
 --                         rides along; its centroid moves 0.5 mu g t^2 up to t*;
 --   --set contact=smooth  mu = 0: the base slides away under the block, which stays where it is.
 -- Outputs (out/moving_base_block_<contact>/): particles.pvd and rigid.pvd for ParaView, probes.csv,
--- reactions.csv (the base's force on the block), block_motion.csv and probe_ux.png.
+-- reactions.csv (the base's force on the block), block_motion.csv, closed_form.csv, and probe_ux and
+-- probe_vx (.png and .svg): the block's centre against the closed form, in the time since the base started.
 --
 --   seismpm scenarios/moving_base_block.lua --set contact=rough [--set friction=0.3] [--set cell=0.1]
 
@@ -60,6 +61,10 @@ local function exact(t)  -- centroid displacement with Coulomb friction
   if t <= ts then return 0.5 * a * t * t end
   return 0.5 * a * ts * ts + speed * (t - ts)
 end
+local function exact_velocity(t)  -- its velocity
+  if contact == "none" then return speed end
+  return math.min(friction * g * t, speed)
+end
 
 local rows = { "time since the base started (s),block centroid ux (m),closed form (m)" }
 print("   t (s)   block ux (m)   closed form (m)")
@@ -76,7 +81,24 @@ end }
 local file = assert(io.open(dir .. "/block_motion.csv", "w"))
 file:write(table.concat(rows, "\n"), "\n")
 file:close()
-m:plot{ quantities = {"ux", "vx"} }
+-- The closed form every 0.01 s, drawn with the block's centre in probe_ux and probe_vx.
+local closed = { "time since the base started (s),centroid ux (m),centroid vx (m/s)" }
+for k = 0, math.floor(duration / 0.01 + 0.5) do
+  local t = k * 0.01
+  closed[#closed + 1] = string.format("%.4f,%.8g,%.8g", t, exact(t), exact_velocity(t))
+end
+file = assert(io.open(dir .. "/closed_form.csv", "w"))
+file:write(table.concat(closed, "\n"), "\n")
+file:close()
+local title = contact == "none" and "closed form: carried along" or
+              string.format("closed form: Coulomb friction, mu = %g", friction)
+for _, q in ipairs({ {"ux", "centroid ux (m)"}, {"vx", "centroid vx (m/s)"} }) do
+  for _, png in ipairs(m:plot{ quantities = {q[1]}, reference = { quantity = q[1], file = dir .. "/closed_form.csv",
+                                                                   x = "time since the base started (s)", y = q[2],
+                                                                   title = title } }) do
+    print("plot: " .. png)
+  end
+end
 
 local u_end = block:centroid()[1] - x0
 if contact == "smooth" then

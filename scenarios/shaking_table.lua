@@ -147,8 +147,9 @@ do
                               title = string.format("Total displacement after %g s of shaking", duration) })
 end
 table_vx:write_csv(dir .. "/table_velocity.csv")
-print("plot: " .. mpm.plot{ file = dir .. "/table_velocity.csv", x = "t", y = {"value"}, title = "Table velocity",
-                            xlabel = "time in the dynamic phase (s)", ylabel = "vx (m/s)" })
+print("plot: " .. mpm.plot{ file = dir .. "/table_velocity.csv", x = "t", y = {"value"},
+                            title = "Horizontal velocity of the shaking table (input motion)",
+                            xlabel = "time since the dynamic phase began (s)", ylabel = "table velocity vx (m/s)" })
 
 if check then
   assert(p1:get("uy") < -0.002, "the crest should settle")

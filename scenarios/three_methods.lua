@@ -267,7 +267,7 @@ local function run_slope(s)
                         y = { "Newmark sliding block (m)", "MPM top of the sliding mass relative to the base (m)" },
                         title = string.format("%s: FoS %.2f, ky %.3f g; Newmark %.3g m, MPM %.3g m", s.title,
                                               lem.fos, lem.ky, d, mpm_run.d[#mpm_run.d]),
-                        xlabel = "time from the start of shaking (s)", ylabel = "permanent displacement (m)" }
+                        xlabel = "time since the dynamic phase began (s)", ylabel = "permanent displacement (m)" }
   return { key = s.key, title = s.title, cell = s.params.cell, fos = lem.fos, ky = lem.ky, pba = pba, newmark = d,
            newmark_reversed = d_reversed, mpm = mpm_run.d[#mpm_run.d], wall = not reused and seen.wall or nil,
            png = png, method = s.method, acceleration = points }

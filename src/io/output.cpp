@@ -9,6 +9,7 @@
 #include "atomic_file.hpp"
 #include "core/error.hpp"
 #include "csv_table.hpp"
+#include "phases_file.hpp"
 
 namespace seismpm {
 
@@ -109,6 +110,7 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
   const auto& P = model.particles();
   const auto& bodies = model.bodies();
   const VtuMeta meta = particle_meta(model, phase);
+  note_phase(phase, t - model.phase_time());
   auto rigid = [&](std::size_t p) { return bodies[P.body[p]].rigid; };
   const std::string name = numbered("particles", n);
   write_particles_vtu(settings_.dir + "/" + name, P, settings_.arrays, meta, [&](std::size_t p) { return !rigid(p); });
@@ -129,6 +131,14 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
     write_file_atomically(settings_.dir + "/grid.pvd", pvd_text(grid_files_));
   }
   if (!probes.empty()) write_probes(probes);
+}
+
+template <int Dim>
+void Output<Dim>::note_phase(const std::string& phase, double start) {
+  if (phase == phase_on_file_ && same_start(start, phase_start_on_file_)) return;
+  record_phase(settings_.dir, phase, start);
+  phase_on_file_ = phase;
+  phase_start_on_file_ = start;
 }
 
 template <int Dim>

@@ -2,7 +2,8 @@
 // simulated time (rewritten whole after every file, so it is always valid); rigid bodies in
 // rigid_NNNNNN.vtu + rigid.pvd, so they can be hidden; optional grid_NNNNNN.vtu + grid.pvd; and
 // probes.csv with every field of every probe; reactions.csv with the mean force of each rigid body on
-// the deformable bodies over each output interval. The two tables are written whole once, then only
+// the deformable bodies over each output interval; phases.csv with the model time at which each phase
+// began (src/io/phases_file.hpp). The two tables are written whole once, then only
 // their new rows are appended (a run's cost stays linear in its length). The directory is locked for
 // as long as the Output lives (DirectoryLock). When to write (every `every` seconds, at the end of
 // runs) is the simulation's event schedule (src/run).
@@ -46,6 +47,8 @@ class Output {
   int files_written() const { return static_cast<int>(files_.size()); }
   // Brings probes.csv up to date with the probes' samples: appends the rows not on file yet.
   void write_probes(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
+  // Puts the phase in progress, begun at model time `start`, in phases.csv (unless it is there).
+  void note_phase(const std::string& phase, double start);
   // Writes probes.csv and reactions.csv whole (atomically) from the state in memory: the probes'
   // samples and the reaction rows kept here. After a restart from a checkpoint this drops the rows
   // written after it; appending goes on from there.
@@ -71,6 +74,10 @@ class Output {
   std::vector<std::size_t> probe_samples_written_;
   std::uint64_t probes_bytes_ = 0, probes_last_row_ = 0;
   double probes_last_row_time_ = std::numeric_limits<double>::quiet_NaN();
+  // The last phase put in phases.csv, so that the file is read only when a phase begins (not saved
+  // in checkpoints: after a restart the file is read again).
+  std::string phase_on_file_;
+  double phase_start_on_file_ = 0.0;
   void write_reactions(const Model<Dim>& model, const std::string& phase);
   void write_probes_whole(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
 };

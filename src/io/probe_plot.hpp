@@ -1,5 +1,8 @@
-// PNG time-history plots of the probes in DIR/probes.csv, drawn with gnuplot: one file per quantity
-// (DIR/probe_<quantity>.png) with every probe's curve, axes labelled with units.
+// Time-history plots of the probes in DIR/probes.csv, drawn with gnuplot as PNG and SVG: one picture
+// per quantity (DIR/probe_<quantity>.png and .svg) with every probe's curve, axes labelled with units.
+// The time axis is the shaking's when the run had a dynamic phase ("time since the dynamic phase
+// began (s)", the phases before it at negative times, shaded and named), the model time otherwise; the
+// phases come from DIR/phases.csv. A closed form can be drawn beside the probes as a reference curve.
 #pragma once
 
 #include <string>
@@ -8,9 +11,23 @@
 
 namespace seismpm {
 
-// Returns the PNG paths written. Throws OutputError (missing probes.csv, no gnuplot, gnuplot failed)
-// or InputError (a quantity no probe has).
-std::vector<std::string> plot_probes(const std::string& dir, const std::vector<std::string>& quantities);
+// A curve drawn with the probes of one quantity, dashed and black: columns x and y of a CSV file, x
+// in the plot's time axis (the time since the dynamic phase began, when the run had one).
+struct ProbeReference {
+  std::string quantity;  // the probe field whose picture gets the curve ("ux")
+  std::string csv, x, y;
+  std::string title;  // its key entry; empty: the column's name
+};
+
+// Returns the PNG paths written (each with its SVG beside it). Throws OutputError (missing
+// probes.csv, no gnuplot, gnuplot failed) or InputError (a quantity no probe has, a reference column
+// its file lacks).
+std::vector<std::string> plot_probes(const std::string& dir, const std::vector<std::string>& quantities,
+                                     const std::vector<ProbeReference>& references = {});
+
+// The gnuplot settings and plot command of quantity `q`'s picture (for picture_script).
+std::string probe_plot_body(const std::string& dir, const std::string& q,
+                            const std::vector<ProbeReference>& references = {});
 
 // The columns of a probes.csv (`csv`) holding field `q` of a probe, as gnuplot numbers them (from 1),
 // with the probe's name; its header is read as CSV (probe names may hold commas and quotes). Throws

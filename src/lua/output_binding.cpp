@@ -31,8 +31,17 @@ const Key kOutputKeys[] = {
         .in(above(0))
         .shown("none"),
 };
+const Key kPlotReferenceKeys[] = {
+    arg::string("quantity", "the probe field whose picture gets the curve").required(),
+    arg::string("file", "a CSV file with a header line").required(),
+    arg::string("x", "its column of times, in the plots' time axis (s since the dynamic phase began, after one)")
+        .required(),
+    arg::string("y", "its column of values, in the quantity's unit").required(),
+    arg::string("title", "the curve's key entry").shown("the y column's name"),
+};
 const Key kPlotKeys[] = {
     arg::names("quantities", "particle fields of the probes, one picture each").def_text("ux|uy"),
+    arg::table("reference", kPlotReferenceKeys, "a closed form drawn with the probes, dashed and black"),
 };
 
 ModelHandle& handle_of(lua_State* L) { return *self<ModelObject>(L).handle; }
@@ -83,14 +92,26 @@ int model_plot(lua_State* L) {
     lua_settop(L, 1);
     lua_newtable(L);
   }
-  const auto quantities = *Args(L, 2, kPlotKeys).names("quantities");
+  const Args a(L, 2, kPlotKeys);
+  const auto quantities = *a.names("quantities");
   for (const auto& q : quantities)
     if (!parse_field(q, 2)) throw Error("key 'quantities': '" + q + "' is not a field name (" + field_names(2) + ")");
+  std::vector<ProbeReference> references;
+  if (a.has("reference")) {
+    const Args r = a.table("reference");
+    ProbeReference ref{r.string("quantity"), r.string("file"), r.string("x"), r.string("y"), r.string("title", "")};
+    for (const std::string* text : {&ref.quantity, &ref.csv, &ref.x, &ref.y, &ref.title})
+      refuse_control_characters(*text, "key 'reference'");
+    if (std::find(quantities.begin(), quantities.end(), ref.quantity) == quantities.end())
+      throw Error("key 'reference': quantity '" + ref.quantity + "' is not among the quantities plotted");
+    check_readable(L, ref.csv, "key 'reference'");
+    references.push_back(ref);
+  }
   const Output<2>* output = h.simulation.output();
   if (!output) throw Error("no output directory yet: call m:output{ dir = ... } first");
   if (h.simulation.probes().empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
   h.simulation.write_probes();
-  const auto files = plot_probes(output->settings().dir, quantities);
+  const auto files = plot_probes(output->settings().dir, quantities, references);
   lua_createtable(L, static_cast<int>(files.size()), 0);
   for (std::size_t i = 0; i < files.size(); ++i) {
     lua_pushstring(L, files[i].c_str());
@@ -114,9 +135,13 @@ const Function kOutputFunctions[] = {
      "it is on file already; for scripts that run in chunks with at_run_end = false.",
      "m:write()"},
     {"model:plot", &guarded<model_plot>, nullptr, kPlotKeys,
-     "PNG time histories of the probes in the output directory with gnuplot (probe_<quantity>.png, one curve per "
-     "probe, axes with units); returns the file names. From the shell: seismpm plot DIR ux uy.",
-     "for _, png in ipairs(m:plot{ quantities = {\"ux\", \"uy\"} }) do print(png) end"},
+     "Time histories of the probes in the output directory with gnuplot, as PNG and SVG (probe_<quantity>.png and "
+     ".svg, one curve per probe, axes with units, the key outside the curves); returns the PNG file names. After a "
+     "dynamic phase the time axis is the time since it began (the shaking time), with the phases before it shaded at "
+     "negative "
+     "times (phases.csv); otherwise the model time. From the shell: seismpm plot DIR ux uy.",
+     "m:plot{ quantities = {\"ux\"}, reference = { quantity = \"ux\", file = dir .. \"/motion.csv\", x = \"t (s)\", "
+     "y = \"closed form (m)\" } }"},
 };
 
 }  // namespace

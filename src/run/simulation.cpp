@@ -94,6 +94,7 @@ void Simulation<Dim>::write() {
 template <int Dim>
 void Simulation<Dim>::write_probes() {
   if (!output_) throw InputError("no output directory yet");
+  output_->note_phase(phase_, model_.time() - model_.phase_time());
   output_->write_probes(probes_);
 }
 
