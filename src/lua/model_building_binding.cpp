@@ -72,7 +72,11 @@ const Key kProbeKeys[] = {
     arg::object("body", kBodyType, "the body whose particle it follows").required(),
     arg::point("at", "m", "the particle of the body nearest to it is followed (within one cell of the body)")
         .required(),
-    arg::number("every", "s", "sampling interval of simulated time (0: every step)").in(at_least(0)).def(0.01),
+    arg::number("every", "s",
+                "sampling interval of simulated time (0: every step); one shorter than the time step is refused "
+                "when a run starts")
+        .in(at_least(0))
+        .def(0.01),
 };
 
 // The shape under key 'shape', checked to lie in the model's domain.

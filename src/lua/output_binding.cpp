@@ -18,7 +18,10 @@ const OutputSettings kOutput;  // the writer's defaults
 
 const Key kOutputKeys[] = {
     arg::string("dir", "the directory, used as given").shown("the --out directory (required without --out)"),
-    arg::number("every", "s", "simulated time between files").in(above(0)).def(kOutput.every),
+    arg::number("every", "s",
+                "simulated time between files; one shorter than the time step is refused when a run starts")
+        .in(above(0))
+        .def(kOutput.every),
     arg::names("fields", "the particle fields written; components such as ux select their vector").shown("all"),
     arg::boolean("grid", kOutput.grid, "also grid_NNNNNN.vtu with nodal mass, velocity and fixities"),
     arg::number("probe_every", "s", "every probe's sampling interval").in(at_least(0)).shown("each probe's own"),
