@@ -1,15 +1,23 @@
-// How OpenMP threads wait for work between the parallel loops of a step. libgomp's default spins for a
-// while first, which is fastest on an idle machine and ruinous on a busy one: a thread spinning at a
-// barrier takes the core that the thread it waits for needs (measured: see docs/performance.md). The
-// program therefore picks its own default unless the user chose one (OMP_WAIT_POLICY or GOMP_SPINCOUNT).
+// How OpenMP threads wait for work between the parallel loops of a step. Spinning (libgomp's default)
+// is fastest on an idle machine and ruinous on a busy one: a thread spinning at a barrier takes the
+// core that the thread it waits for, or another program, needs. Sleeping at once (passive) is never
+// slower than one thread but gives up most of a second thread's gain on an idle machine. Measured on
+// 2 cores (docs/kernel.md): a short spin keeps the idle speed; passive is best once the cores are busy.
+// The program therefore picks by the machine's load when it starts, unless the user chose
+// (OMP_WAIT_POLICY or GOMP_SPINCOUNT).
 #pragma once
 
 namespace seismpm::app {
 
+// The policy for `threads` threads on `cpus` cores with a load average `load` from other programs:
+// true for passive waiting (the cores are taken), false for a short spin.
+bool wait_passively(double load, int cpus, int threads);
+
 // libgomp reads its settings once, when it is loaded, before main() runs: setting them now needs a new
-// start of the program. When neither variable is set, this sets the default and re-executes the
-// program with the same arguments (once: the variable is set the second time). Returns normally when
-// nothing was needed or the re-execution failed (the run then goes on with libgomp's default).
+// start of the program. When neither variable is set, this sets one (OMP_WAIT_POLICY=passive, or
+// GOMP_SPINCOUNT=1000 for the short spin) and re-executes the program with the same arguments (once:
+// the variable is set the second time). Returns normally when nothing was needed or the re-execution
+// failed (the run then goes on with libgomp's default).
 void use_default_thread_waiting(char** argv);
 
 }  // namespace seismpm::app
