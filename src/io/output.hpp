@@ -2,9 +2,10 @@
 // simulated time (rewritten whole after every file, so it is always valid); rigid bodies in
 // rigid_NNNNNN.vtu + rigid.pvd, so they can be hidden; optional grid_NNNNNN.vtu + grid.pvd; and
 // probes.csv with every field of every probe; reactions.csv with the mean force of each rigid body on
-// the deformable bodies over each output interval. The two tables are written whole once, then only
-// their new rows are appended (a run's cost stays linear in its length). The directory is locked for
-// as long as the Output lives (DirectoryLock). When to write (every `every` seconds, at the end of
+// the deformable bodies over each output interval; with the first particle file, open_in_paraview.py,
+// which opens the run in ParaView (src/io/paraview_script.hpp). The two tables are written whole once,
+// then only their new rows are appended (a run's cost stays linear in its length). The directory is
+// locked for as long as the Output lives (DirectoryLock). When to write (every `every` seconds, at the end of
 // runs) is the simulation's event schedule (src/run).
 #pragma once
 
