@@ -13,7 +13,8 @@
 -- scenarios/data/table_velocity.csv (a reconstruction: see that file's header).
 -- Control points: 1 near the crest (its vertical displacement), 2 on the face (its horizontal one).
 -- Outputs under out/shaking_table/: particles.pvd and rigid.pvd for ParaView, probes.csv,
--- reactions.csv (box.fx is the base shear), probe_ux.png, probe_uy.png, summary.txt.
+-- reactions.csv (base.fx is the base shear; base.fx + left_wall.fx + right_wall.fx the box's whole
+-- horizontal force on the soil), probe_ux.png, probe_uy.png, summary.txt, open_in_paraview.py.
 --
 --   seismpm scenarios/shaking_table.lua [--set cell=0.0125] [--set duration=14] [--set every=0.25]
 --                                       [--set record=FILE.csv] [--set check=true]

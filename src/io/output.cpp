@@ -9,6 +9,7 @@
 #include "atomic_file.hpp"
 #include "core/error.hpp"
 #include "csv_table.hpp"
+#include "paraview_script.hpp"
 #include "phases_file.hpp"
 
 namespace seismpm {
@@ -33,6 +34,22 @@ const std::string& checked_directory(const OutputSettings& s) {
   if (s.arrays.empty()) throw InputError("output: no fields to write");
   ensure_directory(s.dir);
   return s.dir;
+}
+
+// The script's settings from the model: the discs' radius is half the particle spacing (the largest
+// of the bodies', so that every body looks filled).
+template <int Dim>
+ParaViewScriptSettings script_settings(const Model<Dim>& model) {
+  ParaViewScriptSettings s{Dim, 0.0, 0.0};
+  const auto& P = model.particles();
+  const double h = model.settings().cell;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    double& r = model.bodies()[P.body[p]].rigid ? s.rigid_radius : s.particle_radius;
+    r = std::max(r, P.half_width[p] * h);
+  }
+  for (double* r : {&s.particle_radius, &s.rigid_radius})
+    if (!(*r > 0.0)) *r = 0.25 * h;  // no particle: the spacing of 2 per cell
+  return s;
 }
 }  // namespace
 
@@ -116,6 +133,8 @@ void Output<Dim>::write(const Model<Dim>& model, const std::vector<std::shared_p
   write_particles_vtu(settings_.dir + "/" + name, P, settings_.arrays, meta, [&](std::size_t p) { return !rigid(p); });
   files_.emplace_back(t, name);
   write_file_atomically(settings_.dir + "/particles.pvd", pvd_text(files_));
+  if (n == 0)  // the script that opens the run: it finds rigid.pvd and grid.pvd when it runs
+    write_file_atomically(settings_.dir + "/" + kParaViewScript, paraview_script_text(script_settings(model)));
   if (std::any_of(bodies.begin(), bodies.end(), [](const Body& b) { return b.rigid; })) {
     const std::string rigid_name = numbered("rigid", n);
     write_particles_vtu(settings_.dir + "/" + rigid_name, P, settings_.arrays, meta, rigid);

@@ -3,9 +3,10 @@
 // rigid_NNNNNN.vtu + rigid.pvd, so they can be hidden; optional grid_NNNNNN.vtu + grid.pvd; and
 // probes.csv with every field of every probe; reactions.csv with the mean force of each rigid body on
 // the deformable bodies over each output interval; phases.csv with the model time at which each phase
-// began (src/io/phases_file.hpp). The two tables are written whole once, then only
-// their new rows are appended (a run's cost stays linear in its length). The directory is locked for
-// as long as the Output lives (DirectoryLock). When to write (every `every` seconds, at the end of
+// began (src/io/phases_file.hpp); with the first particle file, open_in_paraview.py, which opens the run
+// in ParaView (src/io/paraview_script.hpp). The two tables are written whole once, then only their new
+// rows are appended (a run's cost stays linear in its length). The directory is locked for as long as
+// the Output lives (DirectoryLock). When to write (every `every` seconds, at the end of
 // runs) is the simulation's event schedule (src/run).
 #pragma once
 

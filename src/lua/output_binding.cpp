@@ -126,8 +126,10 @@ int model_plot(lua_State* L) {
 const Function kOutputFunctions[] = {
     {"model:output", &guarded<model_output>, nullptr, kOutputKeys,
      "Writes ParaView files into dir: particles_NNNNNN.vtu now, every `every` seconds of simulated time and at the "
-     "end of each run, listed with their times in particles.pvd (open that one in ParaView); probes.csv with every "
-     "field of every probe. With checkpoint_every, a checkpoint dir/checkpoint.chk during runs whenever that many "
+     "end of each run, listed with their times in particles.pvd (open that one in ParaView, or run "
+     "open_in_paraview.py: "
+     "paraview --script=DIR/open_in_paraview.py); probes.csv with every field of every probe. With checkpoint_every, a "
+     "checkpoint dir/checkpoint.chk during runs whenever that many "
      "seconds of wall time have passed (the previous one stays valid until the new one replaces it).",
      "m:output{ dir = \"out/slope\", every = 0.1, probe_every = 0.01 }"},
     {"model:write",

@@ -19,6 +19,7 @@
 #include "io/atomic_file.hpp"
 #include "io/csv_table.hpp"
 #include "io/output.hpp"
+#include "io/paraview_script.hpp"
 #include "io/probe_plot.hpp"
 #include "io/text_lines.hpp"
 #include "lua/lua_fixture.hpp"
@@ -363,6 +364,36 @@ TEST_CASE("particle files are in id order across the kernel's sorts, id the glob
   CHECK(worst == 0.0);
   CHECK(last->GetFieldData()->GetArray("TimeValue")->GetTuple1(0) == Approx(0.2));
   CHECK(last->GetFieldData()->GetArray("phase_time")->GetTuple1(0) == Approx(0.1));
+}
+
+// open_in_paraview.py comes with the first particle file, beside particles.pvd, and opens the files
+// it finds beside itself: no path of the run's directory is written into it, so the folder can move.
+// (The ctest paraview_script_is_python compiles a written script with python3.)
+TEST_CASE("the ParaView script is written beside particles.pvd and names the files relative to its folder",
+          "[io][vtu][paraview]") {
+  const std::string dir = fresh_dir("paraview_script");
+  const std::string script = dir + "/" + kParaViewScript;
+  auto m = block_on_base("base");  // cell 0.05, 2 particles per cell: a radius of 0.0125 m
+  Output<2> out(OutputSettings{dir, 0.1});
+  CHECK_FALSE(fs::exists(script));
+  out.write(*m, {}, "gravity");
+  REQUIRE(fs::exists(script));
+  const std::string text = read_text(script);
+  CHECK(text == paraview_script_text(ParaViewScriptSettings{2, 0.0125, 0.0125}));
+  CHECK(fs::path(script).parent_path() == fs::path(dir + "/particles.pvd").parent_path());
+  CHECK(text.find(dir) == std::string::npos);
+  CHECK(text.find("seismpm_test_paraview_script") == std::string::npos);
+  for (const char* file : {"particles.pvd", "rigid.pvd", "grid.pvd"})
+    CHECK(text.find("os.path.join(folder, \"" + std::string(file) + "\")") != std::string::npos);
+  CHECK(text.find("ColorBy(display, (\"POINTS\", \"displacement\", \"Magnitude\"))") != std::string::npos);
+  CHECK(text.find("\nDIM = 2 ") != std::string::npos);
+  CHECK(text.find("\nPARTICLE_RADIUS = 0.0125 ") != std::string::npos);
+  // The folder from __file__ (pvpython, --state) and else from the program's arguments (--script).
+  CHECK(text.find("os.path.dirname(os.path.abspath(here))") != std::string::npos);
+  CHECK(text.find("/proc/self/cmdline") != std::string::npos);
+  for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().extension() != ".tmp");
+  // A 3D model's script keeps ParaView's 3D interaction.
+  CHECK(paraview_script_text(ParaViewScriptSettings{3, 0.1, 0.2}).find("\nDIM = 3 ") != std::string::npos);
 }
 
 TEST_CASE("probes.csv grows by appended rows and always equals the whole table", "[io][probes][robustness]") {
