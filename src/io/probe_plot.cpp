@@ -43,11 +43,11 @@ std::string phase_marks(const std::vector<PhaseStart>& phases, double t0) {
   for (std::size_t k = 0; k < phases.size(); ++k) {
     const double from = phases[k].start - t0;
     if (phases[k].start < t0 && !same_start(phases[k].start, t0)) {
+      // Named on the time axis's label (shaded_phases), not in the band: a gravity phase is often a
+      // sliver beside the shaking, and its name written there would lie over the next phase's curves.
       const double to = std::min(k + 1 < phases.size() ? phases[k + 1].start : t0, t0) - t0;
       os << "set object " << object++ << " rectangle from first " << from << ", graph 0 to first " << to
-         << ", graph 1 behind fillcolor rgb '#e6e6e6' fillstyle solid 1.0 noborder\n"
-         << "set label " << gnuplot_quote(phase_label(phases[k].phase)) << " at first " << from << ", graph 0.97"
-         << label_style;
+         << ", graph 1 behind fillcolor rgb '#e6e6e6' fillstyle solid 1.0 noborder\n";
     } else if (k > 0 && !same_start(phases[k].start, t0)) {
       os << "set arrow from first " << from << ", graph 0 to first " << from
          << ", graph 1 nohead dt 2 lc rgb '#606060'\nset label "
@@ -56,6 +56,14 @@ std::string phase_marks(const std::vector<PhaseStart>& phases, double t0) {
     }
   }
   return os.str();
+}
+
+// "; shaded: gravity phase" for the phases that phase_marks shades (those before t0), or "".
+std::string shaded_phases(const std::vector<PhaseStart>& phases, double t0) {
+  std::string names;
+  for (const auto& p : phases)
+    if (p.start < t0 && !same_start(p.start, t0)) names += (names.empty() ? "" : ", ") + phase_label(p.phase);
+  return names.empty() ? "" : "; shaded: " + names;
 }
 
 }  // namespace
@@ -122,7 +130,7 @@ std::string probe_plot_body(const std::string& dir, const std::string& q,
   std::ostringstream body;
   body << "set title " << gnuplot_quote((what.empty() ? q : what) + " of the control points") << "\n"
        << "set xlabel "
-       << gnuplot_quote(shaking             ? "time since the dynamic phase began (s)"
+       << gnuplot_quote(shaking             ? "time since the dynamic phase began (s)" + shaded_phases(phases, t0)
                         : phases.size() > 1 ? "model time (s)"
                                             : "time (s)")
        << "\nset ylabel " << gnuplot_quote((what.empty() ? "" : what + " ") + q + " (" + field_unit(q) + ")") << "\n"

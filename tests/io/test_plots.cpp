@@ -130,10 +130,11 @@ TEST_CASE("probe plots: time since the dynamic phase began, earlier phases shade
   SECTION("after a dynamic phase: its time, the gravity phase at negative times") {
     write(dir + "/phases.csv", "phase,start (s)\ngravity,0\ndynamic,0.2\n");
     const std::string body = probe_plot_body(dir, "uy");
-    CHECK(contains(body, "set xlabel 'time since the dynamic phase began (s)'"));
+    // The shaded phase is named on the axis, not over the curves of the phase after it.
+    CHECK(contains(body, "set xlabel 'time since the dynamic phase began (s); shaded: gravity phase'"));
     CHECK(contains(body, "using ($1 - 0.2):3 with lines lw 2 title 'crest'"));
     CHECK(contains(body, "set object 1 rectangle from first -0.2, graph 0 to first 0, graph 1 behind"));
-    CHECK(contains(body, "set label 'gravity phase' at first -0.2"));
+    CHECK_FALSE(contains(body, "set label 'gravity phase'"));
     CHECK(contains(body, "set ylabel 'Vertical displacement uy (m)'"));
   }
   SECTION("a closed form drawn with the quantity it belongs to, not with the others") {
