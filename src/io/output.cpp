@@ -224,14 +224,34 @@ void Output<Dim>::write_reactions(const Model<Dim>& model, const std::string& ph
   const double t = model.time();
   std::ostringstream os;
   os.precision(10);
-  if (reactions_.empty()) {
-    os << "time (s),phase";
-    for (const auto& b : bodies)
-      if (b.rigid)
-        for (int d = 0; d < Dim; ++d)
-          os << ',' << csv_field(b.name + ".f" + axis[d] + " (N" + (Dim == 2 ? "/m" : "") + ")");
-    os << '\n';
+  std::string header = "time (s),phase";
+  std::size_t rigid = 0;
+  for (const auto& b : bodies)
+    if (b.rigid) {
+      ++rigid;
+      for (int d = 0; d < Dim; ++d)
+        header += ',' + csv_field(b.name + ".f" + axis[d] + " (N" + (Dim == 2 ? "/m" : "") + ")");
+    }
+  header += '\n';
+  bool whole = reactions_.empty();
+  if (whole) {
+    os << header;
     last_impulse_.assign(bodies.size(), Vec<Dim>::Zero());
+  } else if (const std::size_t on_file =
+                 (split_csv_fields(reactions_.substr(0, reactions_.find('\n'))).size() - 2) / Dim;
+             rigid > on_file) {
+    // A rigid body added since the header was written (m:rigid between runs) comes after the others
+    // (bodies keep their order): the header gains its columns and the rows before get empty cells
+    // there, so that every row keeps the header's columns. The file is then written whole once.
+    const std::string empty_cells((rigid - on_file) * Dim, ',');
+    std::string widened = header;
+    for (std::size_t at = reactions_.find('\n') + 1; at < reactions_.size();) {
+      const std::size_t end = reactions_.find('\n', at);
+      widened += reactions_.substr(at, end - at) + empty_cells + '\n';
+      at = end + 1;
+    }
+    reactions_ = std::move(widened);
+    whole = true;
   }
   last_impulse_.resize(bodies.size(), Vec<Dim>::Zero());
   os << t << ',' << csv_field(phase);
@@ -248,8 +268,10 @@ void Output<Dim>::write_reactions(const Model<Dim>& model, const std::string& ph
   const std::string text = os.str();
   const std::string path = settings_.dir + "/reactions.csv";
   // The first row comes with the header, written whole; the next ones are appended, one write each.
-  if (reactions_.empty() || !replace_file_tail(path, reactions_.size(), reactions_.size(), text))
-    write_file_atomically(path, reactions_ + text);
+  // Appending needs the file as this run left it: after a widened header, or when it was changed or
+  // removed meanwhile, the file is written whole.
+  const std::uint64_t on_disk = whole ? 0 : reactions_.size();
+  if (whole || !replace_file_tail(path, on_disk, on_disk, text)) write_file_atomically(path, reactions_ + text);
   reactions_ += text;
   last_time_ = t;
 }

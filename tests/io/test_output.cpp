@@ -514,3 +514,38 @@ TEST_CASE("reactions.csv grows by appended rows, quoted names keeping their colu
   const auto c = read_csv_columns(csv, {"time (s)", "ba\"se,1.fy (N/m)"});
   CHECK(c.columns[0].back() == Approx(m.time()));
 }
+
+TEST_CASE("a rigid body added between runs widens reactions.csv: every row keeps the header's columns",
+          "[io][reactions]") {
+  const std::string dir = fresh_dir("reactions_widened");
+  const std::string csv = dir + "/reactions.csv";
+  auto model = block_on_base("base");
+  auto& m = *model;
+  Output<2> out(OutputSettings{dir, 0.1});
+  out.write(m, {}, "gravity");
+  m.step();
+  out.write(m, {}, "gravity");
+  std::array<std::shared_ptr<const History>, 2> v = {std::make_shared<ConstantHistory>(0.0),
+                                                     std::make_shared<ConstantHistory>(0.0)};
+  m.fill_box(m.add_rigid_body("wall", 2, 2000, v), -1, Vec<2>(0.1, 0.1), Vec<2>(0.15, 0.9));
+  for (int k = 0; k < 3; ++k) {
+    m.step();
+    out.write(m, {}, "dynamic");
+  }
+  TextLines in(csv);
+  std::string line;
+  REQUIRE(in.next(line));
+  CHECK(split_csv_fields(line) == std::vector<std::string>{"time (s)", "phase", "base.fx (N/m)", "base.fy (N/m)",
+                                                           "wall.fx (N/m)", "wall.fy (N/m)"});
+  int rows = 0;
+  while (in.next(line)) {
+    const auto cells = split_csv_fields(line);
+    CAPTURE(line);
+    REQUIRE(cells.size() == 6u);
+    CHECK(cells[4].empty() == (rows < 2));  // the wall's cells are empty before it existed
+    ++rows;
+  }
+  CHECK(rows == 5);
+  const auto c = read_csv_columns(csv, {"time (s)", "base.fy (N/m)"});
+  CHECK(c.columns[0].size() == 5u);
+}
