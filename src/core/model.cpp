@@ -195,13 +195,21 @@ std::size_t Model<Dim>::fill(int body, int material, const Vec<Dim>& lo, const V
       body, [material](const Vec<Dim>&) { return material; }, lo, hi, inside, outward);
 }
 
+// The sub-points a fill's box [lo, hi] holds at most (a cell's margin each side): an upper bound of the
+// particles it adds, known before any is made.
+template <int Dim>
+double Model<Dim>::fill_candidates(int ppc, const Vec<Dim>& lo, const Vec<Dim>& hi) const {
+  double candidates = 1.0;
+  for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * ppc;
+  return candidates;
+}
+
 template <int Dim>
 std::vector<Vec<Dim>> Model<Dim>::fill_points(int ppc, const Vec<Dim>& lo, const Vec<Dim>& hi,
                                               const std::function<bool(const Vec<Dim>&)>& inside) const {
   if (ppc < 1 || ppc > kMaxParticlesPerCell) throw InputError("fill: ppc out of range");
-  double candidates = 1.0;  // sub-points in the box: refuse what would exhaust memory
-  for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * ppc;
-  if (candidates > 2e8) throw InputError("fill: over 200 million particles; use a larger cell or fewer ppc");
+  if (fill_candidates(ppc, lo, hi) > 2e8)
+    throw InputError("fill: over 200 million particles; use a larger cell or fewer ppc");
   std::vector<Vec<Dim>> points;
   for_each_sub_point(grid_, ppc, lo, hi, [&](const Vec<Dim>& x) {
     if (inside(x)) points.push_back(x);
@@ -217,8 +225,7 @@ void Model<Dim>::check_fill_memory(const Body& b, const Vec<Dim>& lo, const Vec<
   if (b.ppc < 1 || b.ppc > kMaxParticlesPerCell) return;  // fill_points names it
   // Per particle: its arrays and, while the fill runs, its position in the list of points.
   const double per_particle = static_cast<double>(bytes_per_particle() + sizeof(Vec<Dim>));
-  double candidates = 1.0;
-  for (int d = 0; d < Dim; ++d) candidates *= std::max(0.0, (hi[d] - lo[d]) / grid_.cell() + 2.0) * b.ppc;
+  const double candidates = fill_candidates(b.ppc, lo, hi);
   const std::uint64_t available = available_memory();
   if (available == 0 || candidates > 2e8 || candidates * per_particle <= static_cast<double>(available)) return;
   std::size_t count = 0;

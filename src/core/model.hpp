@@ -211,6 +211,7 @@ class Model {
   int new_body(const std::string& name, int ppc, bool rigid);
   // `s`, after refusing a grid that needs more memory than is available (check_memory).
   static const ModelSettings<Dim>& with_grid_memory_checked(const ModelSettings<Dim>& s);
+  double fill_candidates(int ppc, const Vec<Dim>& lo, const Vec<Dim>& hi) const;
   // Throws InputError when the particles a fill would add need more memory than is available.
   void check_fill_memory(const Body& b, const Vec<Dim>& lo, const Vec<Dim>& hi,
                          const std::function<bool(const Vec<Dim>&)>& inside) const;

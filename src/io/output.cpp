@@ -207,8 +207,7 @@ void Output<Dim>::write_probes_whole(const std::vector<std::shared_ptr<Probe<Dim
 }
 
 template <int Dim>
-void Output<Dim>::rewrite_tables([[maybe_unused]] const Model<Dim>& model,
-                                 const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
+void Output<Dim>::rewrite_tables(const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
   if (!probes.empty()) write_probes_whole(probes);
   const std::string reactions = settings_.dir + "/reactions.csv";
   if (!reactions_.empty())

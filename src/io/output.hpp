@@ -53,7 +53,7 @@ class Output {
   // Writes probes.csv and reactions.csv whole (atomically) from the state in memory: the probes'
   // samples and the reaction rows kept here. After a restart from a checkpoint this drops the rows
   // written after it; appending goes on from there.
-  void rewrite_tables(const Model<Dim>& model, const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
+  void rewrite_tables(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
 
  private:
   template <int>

@@ -33,6 +33,9 @@ std::string describe(const std::string& q) {
 // "gravity" -> "gravity phase"; the name of a phase as a label.
 std::string phase_label(const std::string& phase) { return phase == "run" ? "before the phases" : phase + " phase"; }
 
+// A phase that began before t0 (the time axis's zero): shaded.
+bool before_zero(const PhaseStart& p, double t0) { return p.start < t0 && !same_start(p.start, t0); }
+
 // Settings that mark the phases on a time axis whose zero is model time t0 (the shaking's start, or
 // 0): phases before t0 shaded and named, the start of each later phase (but the first) a dashed line.
 std::string phase_marks(const std::vector<PhaseStart>& phases, double t0) {
@@ -42,7 +45,7 @@ std::string phase_marks(const std::vector<PhaseStart>& phases, double t0) {
   int object = 1;
   for (std::size_t k = 0; k < phases.size(); ++k) {
     const double from = phases[k].start - t0;
-    if (phases[k].start < t0 && !same_start(phases[k].start, t0)) {
+    if (before_zero(phases[k], t0)) {
       // Named on the time axis's label (shaded_phases), not in the band: a gravity phase is often a
       // sliver beside the shaking, and its name written there would lie over the next phase's curves.
       const double to = std::min(k + 1 < phases.size() ? phases[k + 1].start : t0, t0) - t0;
@@ -62,7 +65,7 @@ std::string phase_marks(const std::vector<PhaseStart>& phases, double t0) {
 std::string shaded_phases(const std::vector<PhaseStart>& phases, double t0) {
   std::string names;
   for (const auto& p : phases)
-    if (p.start < t0 && !same_start(p.start, t0)) names += (names.empty() ? "" : ", ") + phase_label(p.phase);
+    if (before_zero(p, t0)) names += (names.empty() ? "" : ", ") + phase_label(p.phase);
   return names.empty() ? "" : "; shaded: " + names;
 }
 

@@ -286,7 +286,7 @@ class CheckpointAccess {
     if (!out->rigid_files_.empty()) write_file_atomically(dir + "/rigid.pvd", pvd_text(out->rigid_files_));
     if (!out->grid_files_.empty()) write_file_atomically(dir + "/grid.pvd", pvd_text(out->grid_files_));
     // The tables whole, which also restarts their appending from the restored rows.
-    out->rewrite_tables(sim.model_, sim.probes_);
+    out->rewrite_tables(sim.probes_);
   }
 
  private:
