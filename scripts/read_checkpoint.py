@@ -12,9 +12,9 @@ import sys
 import zlib
 
 MAGIC = b"SEISMPMCHK"
-VERSION = 1
+VERSION = 2
 # Particles::for_each_member's order; the element size comes from the file.
-PARTICLE_MEMBERS = ["x", "u", "v", "mass", "volume", "half_width", "stress", "strain", "plastic_strain",
+PARTICLE_MEMBERS = ["x", "u", "v", "affine", "mass", "volume", "half_width", "stress", "strain", "plastic_strain",
                     "yield", "normal", "id", "body", "material"]
 INTEGER_MEMBERS = {"yield": "B", "id": "i", "body": "H", "material": "H"}
 

@@ -255,7 +255,7 @@ bool ContactFields<Dim>::held(int k) const {
 template <int Dim>
 template <class Shape>
 void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, const Grid<Dim>& grid,
-                                             const ParticleSupport<Dim>& support, const Vec<Dim>& gravity) {
+                                             const ParticleSupport<Dim>& support, const Vec<Dim>& gravity, bool apic) {
   const auto& st = support.template stencils<Shape>();
   const auto& P = particles;
   const auto& G = grid;
@@ -289,12 +289,13 @@ void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, co
     const Vec<Dim> mv = m * P.v[p];
     const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
     const Vec<Dim> mg = m * g;
-    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+    const Mat<Dim> mC = m * P.affine[p];  // zero unless the transfer is APIC
+    for_each_node_offset(st[p], G, [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& dx) {
       const int k = S.index(i);
       if (k < 0) return;
       const int s = S.slot(k, f);
       S.mass[s] += N * m;
-      S.momentum[s] += N * mv;
+      S.momentum[s] += apic ? Vec<Dim>(N * (mv + mC * dx)) : Vec<Dim>(N * mv);
       S.force[s] += N * mg - vs * dN;
       S.gradient[s] += m * dN;
     });
@@ -442,7 +443,7 @@ void ContactFields<Dim>::sum_reactions(double dt) {
 template <int Dim>
 template <class Shape>
 void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const Grid<Dim>& grid,
-                                        const ParticleSupport<Dim>& support, double min_mass) {
+                                        const ParticleSupport<Dim>& support, double min_mass, bool apic) {
   constexpr int kSlots = SharedNodes<Dim>::kSlots;
   const auto& st = support.template stencils<Shape>();
   const auto& P = particles;
@@ -456,9 +457,10 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
     if (body_rigid_[b] || !near_shared_[support.cell_of[p]]) return;
     const int f = field_of_body_[b];
     const Vec<Dim> mv = P.mass[p] * P.v[p];
-    for_each_node(st[p], grid, [&](int i, double N, const Vec<Dim>&) {
+    const Mat<Dim> mC = P.mass[p] * P.affine[p];
+    for_each_node_offset(st[p], grid, [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& dx) {
       const int k = S.index(i);
-      if (k >= 0) S.momentum[S.slot(k, f)] += N * mv;
+      if (k >= 0) S.momentum[S.slot(k, f)] += apic ? Vec<Dim>(N * (mv + mC * dx)) : Vec<Dim>(N * mv);
     });
   });
   const int count = S.count();
@@ -475,9 +477,9 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
   template void ContactFields<D>::mark_shared_nodes<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, \
                                                        const StepContext&);                                            \
   template void ContactFields<D>::particles_to_fields<S>(const Particles<D>&, const Grid<D>&,                          \
-                                                         const ParticleSupport<D>&, const Vec<D>&);                    \
+                                                         const ParticleSupport<D>&, const Vec<D>&, bool);              \
   template void ContactFields<D>::remap_momentum<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&,    \
-                                                    double);
+                                                    double, bool);
 SEISMPM_CONTACT_SHAPE(2, LinearShape)
 SEISMPM_CONTACT_SHAPE(2, GimpShape)
 SEISMPM_CONTACT_SHAPE(3, LinearShape)

@@ -62,7 +62,7 @@ class ContactFields {
   // fields, without rigid particles).
   template <class Shape>
   void particles_to_fields(const Particles<Dim>& particles, const Grid<Dim>& grid, const ParticleSupport<Dim>& support,
-                           const Vec<Dim>& gravity);
+                           const Vec<Dim>& gravity, bool apic);
   // Each field's velocity at the shared nodes: a rigid field's the weighted average of its particles'
   // (the paper's Eq. 9), a deformable field's from its momentum and force.
   void update_velocities(double dt, double min_mass);
@@ -76,7 +76,7 @@ class ContactFields {
   // The MUSL re-map of each deformable field's momentum at the shared nodes; rigid slots keep theirs.
   template <class Shape>
   void remap_momentum(const Particles<Dim>& particles, const Grid<Dim>& grid, const ParticleSupport<Dim>& support,
-                      double min_mass);
+                      double min_mass, bool apic);
 
   // --- what the model's transfers read
   bool rigid(int body) const { return body_rigid_[body]; }

@@ -101,6 +101,18 @@ void Grid<Dim>::apply_fixities(std::vector<Vec<Dim>>& field) const {
   }
 }
 
+template <int Dim>
+void Grid<Dim>::hold_updated_velocities(double dt) {
+  for (const int node : fixed_nodes_) {
+    const unsigned f = fixity_[node];
+    for (int d = 0; d < Dim; ++d)
+      if (f & (1u << d)) {
+        acceleration[node][d] -= velocity[node][d] / dt;  // v^L = mv/m + dt a, so a - v^L/dt = -(mv/m)/dt
+        velocity[node][d] = 0.0;
+      }
+  }
+}
+
 Side parse_side(std::string_view name, int dim) {
   static constexpr std::string_view names[] = {"left", "right", "bottom", "top", "back", "front"};
   for (int i = 0; i < 2 * dim; ++i)

@@ -54,6 +54,12 @@ class Grid {
   unsigned fixity(int node) const { return fixity_[node]; }
   // Zeroes the fixed components of `field` (velocities, accelerations).
   void apply_fixities(std::vector<Vec<Dim>>& field) const;
+  // Holds the fixed components of the updated velocity at zero and sets the acceleration there to the
+  // change that brings the start velocity mv/m to it, (0 - mv/m) / dt. A FLIP update adds
+  // sum N a dt to the particle velocity: with a zeroed acceleration instead, the particles beside a
+  // held edge kept the velocity the support had taken from the grid and pushed it into the edge again
+  // on every step (a floor under a granular flow kept a store of motion that never dissipated).
+  void hold_updated_velocities(double dt);
 
   // Nodal fields, indexed by the linear node index.
   std::vector<double> mass;

@@ -25,6 +25,9 @@
 namespace seismpm {
 
 enum class Scheme { Usl, Musl };
+// How particle velocities are updated from the grid: FLIP (blended with PIC by ModelSettings::flip)
+// or APIC, the grid velocity plus the affine velocity field (gradient) around the particle.
+enum class Transfer { Flip, Apic };
 
 template <int Dim>
 struct ModelSettings {
@@ -35,9 +38,10 @@ struct ModelSettings {
   Scheme scheme = Scheme::Musl;
   Vec<Dim> gravity = Vec<Dim>::Zero();  // m/s^2
   double cfl = 0.4;                     // dt = cfl h / max(c_p + |v_p|)
-  double flip = 1.0;                    // 1 = FLIP, 0 = PIC
-  double fixed_dt = 0.0;                // > 0 overrides the CFL time step (s)
-  int sort_every = 20;                  // steps between sorting particles by cell
+  Transfer transfer = Transfer::Flip;
+  double flip = 1.0;      // Transfer::Flip: 1 = FLIP, 0 = PIC
+  double fixed_dt = 0.0;  // > 0 overrides the CFL time step (s)
+  int sort_every = 20;    // steps between sorting particles by cell
   // Average the volumetric strain increment over each cell (B-bar style): removes the volumetric
   // locking that isochoric plastic flow (psi = 0) and near-incompressibility cause in low-order cells.
   bool cell_volumetric_strain = true;

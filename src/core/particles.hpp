@@ -14,6 +14,7 @@ struct Particles {
   std::vector<Vec<Dim>> x;             // position (m)
   std::vector<Vec<Dim>> u;             // displacement since the last reset (m)
   std::vector<Vec<Dim>> v;             // velocity (m/s)
+  std::vector<Mat<Dim>> affine;        // APIC: the velocity gradient the particle carries (1/s); FLIP: 0
   std::vector<double> mass;            // kg (per metre out of plane in 2D)
   std::vector<double> volume;          // m^3 (m^2 per metre in 2D)
   std::vector<double> half_width;      // uGIMP half-width l in cell units, fixed at creation
@@ -60,6 +61,7 @@ struct Particles {
     f(s.x);
     f(s.u);
     f(s.v);
+    f(s.affine);
     f(s.mass);
     f(s.volume);
     f(s.half_width);

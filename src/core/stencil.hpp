@@ -71,4 +71,37 @@ inline void for_each_node(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& 
   }
 }
 
+// Calls f(node, N, gradN, dx) for every node of the stencil, dx = x_node - x_p. The centre is
+// recovered from the weights themselves (sum N x_node = x_p for linear and uGIMP shapes inside the
+// grid), so this serves the positions the stencil was made at, also after the particles moved.
+template <int Dim, int K, class F>
+inline void for_each_node_offset(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {
+  const double h = grid.cell();
+  double off[Dim][K];
+  for (int d = 0; d < Dim; ++d) {
+    double centre = 0.0;  // in node steps from the stencil's first node
+    for (int k = 0; k < K; ++k) centre += k * st.w[d][k];
+    for (int k = 0; k < K; ++k) off[d][k] = h * (k - centre);
+  }
+  if constexpr (Dim == 2) {
+    const int sy = grid.stride(1);
+    for (int b = 0; b < K; ++b)
+      for (int a = 0; a < K; ++a) {
+        const Vec<2> dN(st.dw[0][a] * st.w[1][b], st.w[0][a] * st.dw[1][b]);
+        f(st.base + a + b * sy, st.w[0][a] * st.w[1][b], dN, Vec<2>(off[0][a], off[1][b]));
+      }
+  } else {
+    static_assert(Dim == 3);
+    const int sy = grid.stride(1), sz = grid.stride(2);
+    for (int c = 0; c < K; ++c)
+      for (int b = 0; b < K; ++b)
+        for (int a = 0; a < K; ++a) {
+          const Vec<3> dN(st.dw[0][a] * st.w[1][b] * st.w[2][c], st.w[0][a] * st.dw[1][b] * st.w[2][c],
+                          st.w[0][a] * st.w[1][b] * st.dw[2][c]);
+          f(st.base + a + b * sy + c * sz, st.w[0][a] * st.w[1][b] * st.w[2][c], dN,
+            Vec<3>(off[0][a], off[1][b], off[2][c]));
+        }
+  }
+}
+
 }  // namespace seismpm

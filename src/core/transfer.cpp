@@ -13,6 +13,7 @@ template <class Shape, bool Contact>
 void Model<Dim>::particles_to_grid() {
   const auto& st = support_.template stencils<Shape>();
   const Vec<Dim> g = settings_.gravity;
+  const bool apic = settings_.transfer == Transfer::Apic;
   auto& P = particles_;
   auto& G = grid_;
   support_.schedule.for_each([&](int p) {
@@ -22,13 +23,22 @@ void Model<Dim>::particles_to_grid() {
     const Vec<Dim> mv = m * P.v[p];
     const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
     const Vec<Dim> mg = m * g;
+    if (apic) {  // the momentum of the particle's affine velocity field v + C (x_i - x_p)
+      const Mat<Dim> mC = m * P.affine[p];
+      for_each_node_offset(st[p], G, [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& dx) {
+        G.mass[i] += N * m;
+        G.momentum[i] += N * (mv + mC * dx);
+        G.force[i] += N * mg - vs * dN;
+      });
+      return;
+    }
     for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
       G.mass[i] += N * m;
       G.momentum[i] += N * mv;
       G.force[i] += N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
     });
   });
-  if constexpr (Contact) contact_.template particles_to_fields<Shape>(P, G, support_, g);
+  if constexpr (Contact) contact_.template particles_to_fields<Shape>(P, G, support_, g, apic);
 }
 
 template <int Dim>
@@ -51,13 +61,16 @@ void Model<Dim>::update_nodal_velocities(const StepContext& c) {
   if constexpr (Contact) contact_.update_velocities(dt, eps);
 }
 
-// Contact, then the grid fixities (on the acceleration too after the force update), then the fixes.
+// Contact, then the grid fixities (after the force update with the acceleration that matches them), then
+// the fixes.
 template <int Dim>
 template <bool Contact>
 void Model<Dim>::constrain(VelocityStage stage, const StepContext& c) {
   if constexpr (Contact) contact_.resolve(stage, grid_, c.dt, mass_threshold_);
-  grid_.apply_fixities(grid_.velocity);
-  if (stage == VelocityStage::Updated) grid_.apply_fixities(grid_.acceleration);
+  if (stage == VelocityStage::Updated)
+    grid_.hold_updated_velocities(c.dt);
+  else
+    grid_.apply_fixities(grid_.velocity);
   for (auto& f : fixes_) f->nodal_velocities(*this, c, stage);
 }
 
@@ -68,6 +81,7 @@ void Model<Dim>::grid_to_particles(const StepContext& c) {
   const auto& st = support_.template stencils<Shape>();
   const int n = static_cast<int>(particles_.size());
   const double dt = c.dt, alpha = settings_.flip;
+  const bool apic = settings_.transfer == Transfer::Apic;
   auto& P = particles_;
   const auto& G = grid_;
   const auto& S = contact_.nodes();
@@ -85,26 +99,34 @@ void Model<Dim>::grid_to_particles(const StepContext& c) {
       f = contact_.field_of(b);
     }
     Vec<Dim> a = Vec<Dim>::Zero(), vl = Vec<Dim>::Zero();
+    Mat<Dim> C = Mat<Dim>::Zero();
     auto gather = [&](auto slotted) {
-      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) {
+      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
+        const Vec<Dim>* vi = &G.velocity[i];
+        const Vec<Dim>* ai = &G.acceleration[i];
         if constexpr (decltype(slotted)::value) {
           const int k = S.index(i);
           if (k >= 0) {  // the particle's own field where fields meet
             const int s = S.slot(k, f);
-            a += N * S.acceleration[s];
-            vl += N * S.velocity[s];
-            return;
+            vi = &S.velocity[s];
+            ai = &S.acceleration[s];
           }
         }
-        a += N * G.acceleration[i];
-        vl += N * G.velocity[i];
+        a += N * *ai;
+        vl += N * *vi;
+        if (apic) C.noalias() += *vi * dN.transpose();
       });
     };
     if (Contact && contact_.near_shared(support_.cell_of[p]))
       gather(std::true_type{});
     else
       gather(std::false_type{});
-    P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
+    if (apic) {
+      P.v[p] = vl;
+      P.affine[p] = C;
+    } else {
+      P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
+    }
     // The centre must not cross a held edge (held_edges.hpp). Linear shapes give a node beyond the
     // edge no weight: their centres near it already move at the linear d v_1 and never reach it.
     if (Shape::K > 2 && held.any() && held.near(P.x[p])) {
@@ -130,6 +152,7 @@ template <int Dim>
 template <class Shape, bool Contact>
 void Model<Dim>::remap_momentum() {
   const auto& st = support_.template stencils<Shape>();
+  const bool apic = settings_.transfer == Transfer::Apic;
   auto& P = particles_;
   auto& G = grid_;
   const int nn = G.node_count();
@@ -139,12 +162,18 @@ void Model<Dim>::remap_momentum() {
     if constexpr (Contact)
       if (contact_.rigid(P.body[p])) return;
     const Vec<Dim> mv = P.mass[p] * P.v[p];
+    if (apic) {
+      const Mat<Dim> mC = P.mass[p] * P.affine[p];
+      for_each_node_offset(
+          st[p], G, [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& dx) { G.momentum[i] += N * (mv + mC * dx); });
+      return;
+    }
     for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) { G.momentum[i] += N * mv; });
   });
   const double eps = mass_threshold_;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < nn; ++i) G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
-  if constexpr (Contact) contact_.template remap_momentum<Shape>(P, G, support_, eps);
+  if constexpr (Contact) contact_.template remap_momentum<Shape>(P, G, support_, eps, apic);
 }
 
 #define SEISMPM_TRANSFERS(D, S, C)                                     \

@@ -29,7 +29,7 @@ class CheckpointError : public std::runtime_error {
 };
 
 inline constexpr std::string_view kCheckpointMagic = "SEISMPMCHK";
-inline constexpr std::uint16_t kCheckpointVersion = 1;
+inline constexpr std::uint16_t kCheckpointVersion = 2;
 
 // CRC-32 (IEEE 802.3, the one of zlib and Python's zlib.crc32) of `size` bytes, continuing from `crc`.
 std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc = 0);

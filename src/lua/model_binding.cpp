@@ -25,6 +25,9 @@ const Key kModelKeys[] = {
     arg::number("cfl", "", "Courant number: the time step is cfl times the cell over the fastest wave")
         .in(open_closed(0, 1))
         .def(kKernel.cfl),
+    arg::choice("transfer", "flip|apic", "flip",
+                "particle velocity update: FLIP (blended with PIC by flip) or APIC (the grid velocity and its "
+                "gradient around the particle: no FLIP noise, no PIC damping of rotation and shear)"),
     arg::number("flip", "", "FLIP share of the particle velocity update (0: PIC)").in(closed(0, 1)).def(kKernel.flip),
     arg::number("dt", "s", "a fixed time step").in(above(0)).shown("from cfl"),
     arg::number("max_dilation", "",
@@ -73,6 +76,7 @@ int model_new(lua_State* L) {
   s.scheme = a.choice("scheme") == "usl" ? Scheme::Usl : Scheme::Musl;
   s.gravity = a.point("gravity");
   s.cfl = a.number("cfl");
+  s.transfer = a.choice("transfer") == "apic" ? Transfer::Apic : Transfer::Flip;
   s.flip = a.number("flip");
   if (auto dt = a.optional_number("dt")) s.fixed_dt = *dt;
   s.max_dilation = a.number("max_dilation");

@@ -239,6 +239,9 @@ class CheckpointAccess {
     s.scheme = static_cast<Scheme>(scheme);
     s.gravity = get_point<Dim>(r);
     s.cfl = r.f64();
+    const std::uint8_t transfer = r.u8();
+    if (transfer > static_cast<std::uint8_t>(Transfer::Apic)) r.fail("an unknown velocity transfer");
+    s.transfer = static_cast<Transfer>(transfer);
     s.flip = r.f64();
     s.fixed_dt = r.f64();
     s.sort_every = r.i32();
@@ -308,6 +311,7 @@ class CheckpointAccess {
     w.u8(static_cast<std::uint8_t>(s.scheme));
     put_point<Dim>(w, s.gravity);
     w.f64(s.cfl);
+    w.u8(static_cast<std::uint8_t>(s.transfer));
     w.f64(s.flip);
     w.f64(s.fixed_dt);
     w.i32(s.sort_every);

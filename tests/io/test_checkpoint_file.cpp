@@ -107,7 +107,7 @@ TEST_CASE("checkpoint file: damaged files are named errors", "[io][checkpoint][r
   SECTION("another format version") {
     std::string bad = good;
     bad[10] = 99;
-    CHECK_THAT(error_of(bad), Catch::Contains("format version 99") && Catch::Contains("reads version 1"));
+    CHECK_THAT(error_of(bad), Catch::Contains("format version 99") && Catch::Contains("reads version 2"));
   }
   SECTION("a changed byte: CRC mismatch") {
     std::string bad = good;

@@ -35,8 +35,10 @@ std::string read_text(const std::string& file) {
 
 // A Mohr-Coulomb slope on a rigid base shaken by a tabulated record, in frictional contact, with a fixity,
 // two probes and an output directory. `function_base`: the base follows a function history instead.
-std::unique_ptr<Simulation<2>> shaken_slope(const std::string& dir, bool function_base = false) {
+std::unique_ptr<Simulation<2>> shaken_slope(const std::string& dir, bool function_base = false,
+                                            Transfer transfer = Transfer::Flip) {
   ModelSettings<2> s;
+  s.transfer = transfer;
   s.lower = Vec<2>(-0.2, -0.1);
   s.upper = Vec<2>(1.4, 0.6);
   s.cell = 0.05;
@@ -103,14 +105,17 @@ TEST_CASE("checkpoint: a dynamic phase restored mid-way ends bit for bit as the 
           "[run][checkpoint]") {
   const std::string dir_a = temp_dir("seismpm_ckpt_a"), dir_b = temp_dir("seismpm_ckpt_b");
   const std::string file = dir_b + "/mid.chk";
+  // APIC: the particles' velocity gradients are state the restart must bring back.
+  const Transfer transfer = GENERATE(Transfer::Flip, Transfer::Apic);
+  CAPTURE(transfer == Transfer::Apic);
   GravityPhaseSettings g;
   g.max_time = 3;
-  auto a = shaken_slope(dir_a);
+  auto a = shaken_slope(dir_a, false, transfer);
   a->gravity_phase(g);
   a->dynamic_phase(0.3, 0.0, RunCall{0.12, [] { return false; }});  // its call's times are landed on too
 
   {
-    auto b = shaken_slope(dir_b);
+    auto b = shaken_slope(dir_b, false, transfer);
     b->gravity_phase(g);
     // The periodic checkpoint once, after the step that lands on the call at t = 0.12 s of the phase; the
     // run goes on (and writes files after the checkpoint that the restore must drop from the lists).
