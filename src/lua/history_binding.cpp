@@ -227,10 +227,27 @@ ProcessedRecord process_record(const Args& a, AccelerationRecord record) {
   return {std::move(used.t), velocity ? std::move(used.v) : used.a, std::move(acceleration), about.str()};
 }
 
+// A history made from a ground acceleration record, with the acceleration as used (windowed, tapered,
+// scaled, corrected): what h:arias() and h:spectrum{} read. Elsewhere it is a table like any other.
+class RecordHistory final : public TableHistory {
+ public:
+  RecordHistory(std::vector<double> t, std::vector<double> values, std::string about,
+                std::shared_ptr<const AccelerationRecord> acceleration)
+      : TableHistory(std::move(t), std::move(values), std::move(about)), acceleration_(std::move(acceleration)) {}
+  const AccelerationRecord& acceleration() const { return *acceleration_; }
+
+ private:
+  std::shared_ptr<const AccelerationRecord> acceleration_;
+};
+
 void push_history(lua_State* L, std::vector<double> t, std::vector<double> values, const std::string& about,
                   std::shared_ptr<const AccelerationRecord> acceleration = nullptr) {
-  auto history = std::make_shared<TableHistory>(std::move(t), std::move(values), about);
-  push_object(L, HistoryObject{std::move(history), std::move(acceleration)});
+  std::shared_ptr<const History> history;
+  if (acceleration)
+    history = std::make_shared<RecordHistory>(std::move(t), std::move(values), about, std::move(acceleration));
+  else
+    history = std::make_shared<TableHistory>(std::move(t), std::move(values), about);
+  push_object(L, HistoryObject{std::move(history)});
 }
 
 // The keys that make sense for an acceleration record only: named when a plain column has them.
@@ -335,20 +352,22 @@ int history_at2(lua_State* L) {
   return 1;
 }
 
-// The acceleration behind the history, for h:arias() and h:spectrum{}.
-const AccelerationRecord& acceleration_of(lua_State* L) {
-  const HistoryObject& h = self<HistoryObject>(L);
-  if (!h.acceleration)
+// The history with the acceleration behind it, for h:arias() and h:spectrum{}; held by the caller.
+std::shared_ptr<const RecordHistory> record_of(lua_State* L) {
+  const auto& h = self<HistoryObject>(L).history;
+  auto record = std::dynamic_pointer_cast<const RecordHistory>(h);
+  if (!record)
     throw Error(
         "needs a history made from an acceleration record (mpm.history.at2, or mpm.history.csv with "
         "kind = \"acceleration\"), not " +
-        h.history->describe());
-  return *h.acceleration;
+        h->describe());
+  return record;
 }
 
 // h:arias() -> Arias intensity (m/s)
 int history_arias(lua_State* L) {
-  const AccelerationRecord& r = acceleration_of(L);
+  const auto record = record_of(L);
+  const AccelerationRecord& r = record->acceleration();
   lua_pushnumber(L, arias_intensity(r.t, r.a));
   return 1;
 }
@@ -395,7 +414,8 @@ std::string spectrum_csv(const std::vector<SpectrumOrdinate>& spectrum) {
 
 // h:spectrum{ file, damping = 0.05, periods, png, plot = true } -> { {T, Sa (g)}, ... }
 int history_spectrum(lua_State* L) {
-  const AccelerationRecord& r = acceleration_of(L);
+  const auto record = record_of(L);
+  const AccelerationRecord& r = record->acceleration();
   if (lua_isnoneornil(L, 2)) {  // h:spectrum(): every default
     lua_settop(L, 1);
     lua_newtable(L);

@@ -11,7 +11,6 @@
 #include "core/history.hpp"
 #include "core/material.hpp"
 #include "core/region.hpp"
-#include "io/ground_motion.hpp"
 #include "run/simulation.hpp"
 
 namespace seismpm::lua {
@@ -66,9 +65,6 @@ struct ShapeObject {
 };
 struct HistoryObject {
   std::shared_ptr<const History> history;
-  // The ground acceleration a history was made from, as used (windowed, tapered, scaled, corrected):
-  // what h:arias() and h:spectrum{} read. Null for histories of anything else.
-  std::shared_ptr<const AccelerationRecord> acceleration = nullptr;
 };
 
 // Lua's type name of each object (self<T>, push_object<T>, check_object<T>).
