@@ -28,21 +28,22 @@ std::string write_temp(const std::string& name, const std::string& text) {
 
 // a = 2 sin(2 pi t) m/s2 on 0 .. 10 s, dt = 0.01, as a CSV the way records come: a UTF-8 BOM, CRLF,
 // '#' comment lines, no header; and as an AT2 file in g.
-std::string sine_csv() {
+// `tag` names the file per test case: ctest runs them side by side.
+std::string sine_csv(const std::string& tag) {
   std::ostringstream os;
   os.precision(17);
   os << "\xEF\xBB\xBF# synthetic record\r\n# time (s), acceleration (m/s2)\r\n";
   for (int k = 0; k <= 1000; ++k) os << 0.01 * k << "," << 2.0 * std::sin(2 * std::numbers::pi * 0.01 * k) << "\r\n";
-  return write_temp("sine.csv", os.str());
+  return write_temp(tag + "_sine.csv", os.str());
 }
-std::string sine_at2() {
+std::string sine_at2(const std::string& tag) {
   std::ostringstream os;
   os << "PEER\nSINE\nUNITS OF G\nNPTS= 1001, DT= 0.01 SEC\n";
   os.precision(17);
   for (int k = 0; k <= 1000; ++k)
     os << 2.0 * std::sin(2 * std::numbers::pi * 0.01 * k) / seismpm::kStandardGravity << ((k + 1) % 5 ? " " : "\n");
   os << "\n";
-  return write_temp("sine.AT2", os.str());
+  return write_temp(tag + "_sine.AT2", os.str());
 }
 
 std::string lua_string(const std::string& s) { return "'" + s + "'"; }
@@ -52,7 +53,7 @@ std::string lua_string(const std::string& s) { return "'" + s + "'"; }
 TEST_CASE("mpm.history.csv of an acceleration record: comments, no header, BOM, CRLF; window, taper, pga",
           "[lua][history][record]") {
   seismpm::test::LuaFixture f;
-  const std::string csv = sine_csv();
+  const std::string csv = sine_csv("csv_keys");
   CHECK(f.error_of("file = " + lua_string(csv) + R"(
     local g = 9.80665
     -- As it is: the acceleration in m/s2.
@@ -92,7 +93,7 @@ TEST_CASE("mpm.history.csv of an acceleration record: comments, no header, BOM, 
 TEST_CASE("mpm.history.at2: window, taper and pga before the baseline, which ends the cut record at rest",
           "[lua][history][record]") {
   seismpm::test::LuaFixture f;
-  CHECK(f.error_of("file = " + lua_string(sine_at2()) + R"(
+  CHECK(f.error_of("file = " + lua_string(sine_at2("at2_keys")) + R"(
     local g = 9.80665
     local raw = mpm.history.at2{ file = file, integrate = "none" }
     assert(math.abs(raw:peak() - 2) < 1e-9)
@@ -120,7 +121,7 @@ TEST_CASE("h:spectrum: the table returned, the CSV and its plot", "[lua][history
   const std::string dir = temp_path("spectrum");
   std::filesystem::remove_all(dir);
   seismpm::test::LuaFixture f;
-  CHECK(f.error_of("file = " + lua_string(sine_at2()) + "; dir = " + lua_string(dir) + R"(
+  CHECK(f.error_of("file = " + lua_string(sine_at2("spectrum")) + "; dir = " + lua_string(dir) + R"(
     local a = mpm.history.at2{ file = file, integrate = "none" }
     -- Resonance after 10 cycles of A sin(w t): A / (2 zeta w^2) (1 - e^{-2 pi zeta 10}) = 0.957 of it.
     local s = a:spectrum{ periods = { 0.001, 1, 1000 }, damping = 0.05 }
@@ -151,8 +152,8 @@ TEST_CASE("h:spectrum: the table returned, the CSV and its plot", "[lua][history
 TEST_CASE("record keys: bad values and keys that do not fit the history are errors naming the key",
           "[lua][history][record][robustness]") {
   seismpm::test::LuaFixture f;
-  const std::string at2 = "mpm.history.at2{ file = " + lua_string(sine_at2()) + ", ";
-  const std::string csv = "mpm.history.csv{ file = " + lua_string(sine_csv()) + ", time = 1, value = 2, ";
+  const std::string at2 = "mpm.history.at2{ file = " + lua_string(sine_at2("errors_at2")) + ", ";
+  const std::string csv = "mpm.history.csv{ file = " + lua_string(sine_csv("errors_csv")) + ", time = 1, value = 2, ";
   const std::string acc = csv + "kind = 'acceleration', ";
   const std::pair<std::string, std::string> cases[] = {
       {at2 + "window = { 5, 11 } }", "key 'window' must lie within the record's 0 .. 10 s"},
@@ -236,4 +237,14 @@ TEST_CASE("the Chi-Chi TCU068 record loads as it is through mpm.history.csv", "[
   )") == "");
   // The whole record's intensity (trapezoidal rule on a^2, g = 9.80665 m/s2).
   CHECK(f.number("arias") == Approx(3.3008).epsilon(0.001));
+}
+
+TEST_CASE("h:spectrum under --sandbox writes only where a script may", "[lua][history][spectrum][robustness]") {
+  const std::string at2 = sine_at2("sandbox");
+  const std::string dir = std::filesystem::path(at2).parent_path().string();
+  seismpm::test::LuaFixture f(true, dir, temp_path("sandbox_out"));
+  REQUIRE(f.error_of("a = mpm.history.at2{ file = " + lua_string(at2) + ", integrate = 'none' }") == "");
+  CHECK_THAT(f.error_of("a:spectrum{ file = '/etc/seismpm_spectrum.csv' }"),
+             Contains("key 'file'") && Contains("is outside what a script may write under --sandbox"));
+  CHECK_FALSE(std::filesystem::exists("/etc/seismpm_spectrum.csv"));
 }
