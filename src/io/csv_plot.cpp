@@ -65,7 +65,7 @@ std::string csv_plot_body(const CsvPlot& p) {
   body << "set title " << gnuplot_quote(p.title) << "\n"
        << "set xlabel " << gnuplot_quote(p.xlabel.empty() ? p.x : p.xlabel) << "\n"
        << "set ylabel " << gnuplot_quote(p.ylabel.empty() ? p.y.front() : p.ylabel) << "\n"
-       << plot.str() << "\n";
+       << (p.log_x ? "set logscale x\n" : "") << plot.str() << "\n";
   return body.str();
 }
 

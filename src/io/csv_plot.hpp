@@ -20,6 +20,7 @@ struct CsvPlot {
   // When set: one point per row at (x, y[0]) coloured by this column, equal axis scales (a picture of
   // particles, e.g. displacement over the slope).
   std::string color;
+  bool log_x = false;  // a logarithmic x axis (periods of a response spectrum)
 };
 
 // The header line of a CSV file to plot, after any '#' comment lines. Throws InputError when the file

@@ -176,6 +176,7 @@ VelocityRecord integrate_record(const AccelerationRecord& record, Baseline basel
   out.t = t;
   out.v = integrate(t, a);
   out.d = integrate(t, out.v);
+  out.a = std::move(a);
   return out;
 }
 

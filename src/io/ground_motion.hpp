@@ -31,6 +31,7 @@ Baseline parse_baseline(const std::string& name);  // "none" | "linear" | "quadr
 
 struct VelocityRecord {
   std::vector<double> t, v, d;  // s, m/s, m
+  std::vector<double> a;        // m/s^2: the acceleration after the correction, whose integrals v and d are
 };
 // Trapezoidal rule, v_k = v_{k-1} + dt (a_{k-1} + a_k)/2 (and likewise d from v).
 //  - Linear: subtracts an acceleration c0 + c1 t that brings the velocity and the displacement at the

@@ -90,6 +90,9 @@ TEST_CASE("a CSV plot of one curve has no key; reference columns are dashed blac
   CHECK_FALSE(contains(body, "set key off"));
   CHECK(contains(body, "using 1:2 with lines lw 2 title 'ux (m)'"));
   CHECK(contains(body, "using 1:3 with lines lw 2 dt 2 lc rgb 'black' title 'closed form (m)'"));
+  CHECK_FALSE(contains(body, "set logscale x"));
+  p.log_x = true;  // a response spectrum's periods
+  CHECK(contains(csv_plot_body(p), "set logscale x\n"));
   p.reference = {"exact (m)"};
   CHECK_THROWS_WITH(csv_plot_body(p), Contains("no column 'exact (m)'"));
 }

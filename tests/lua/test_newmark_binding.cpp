@@ -48,6 +48,9 @@ TEST_CASE("mpm.newmark: the record from a file, as SLAMMER scales it", "[lua][me
     local a = mpm.history.at2{ file = file, integrate = "none", scale = 0.5 * 9.80665 / raw:peak() }
     local d = mpm.newmark{ acceleration = a, ky = 0.05 }
     assert(math.abs(d / 4.77763 - 1) < 0.005, "d = " .. d)
+    -- pga = 0.5 is the same scale.
+    local p = mpm.newmark{ acceleration = mpm.history.at2{ file = file, integrate = "none", pga = 0.5 }, ky = 0.05 }
+    assert(math.abs(p / d - 1) < 1e-12, "pga: " .. p .. " vs scale: " .. d)
   )") == "");
 }
 
