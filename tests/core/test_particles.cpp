@@ -17,7 +17,7 @@ TEST_CASE("for_each_member visits every member of Particles", "[core][particles]
     ++members;
     bytes += sizeof(member);
   });
-  CHECK(members == 14);
+  CHECK(members == 15);
   CHECK(bytes == sizeof(Particles<2>));
   CHECK(sizeof(Particles<3>) == sizeof(Particles<2>));
 }
