@@ -25,13 +25,18 @@
 -- sinking with it; a PIC share stops the creep only by damping the collapse itself (docs/validation.md).
 --
 -- check=true asserts the experiment's bands: the deposit surface within 5 mm of the measured one for
--- x <= 0.30 m, the run-out within 0.42-0.52 m, and the deposit at rest.
+-- x <= 0.30 m, the run-out within 0.42-0.52 m, and the deposit at rest. check=runout asserts the run-out
+-- band and that the front has stopped (moved less than 2 mm over the last 0.5 s): what the coarse
+-- ctest holds today (docs/validation.md says which bands the kernel meets at which resolution).
 
 local shape = mpm.param("shape", "linear")      -- linear | gimp
 local cell = mpm.param("cell", 0.004)           -- m
 local ppc = mpm.param("ppc", 2)                 -- particles per cell along each axis
 local duration = mpm.param("duration", 1.5)     -- s of dynamic phase at most
-local check = mpm.param("check", false)
+local check = mpm.param("check", "false")      -- false | true | runout
+if check ~= "false" and check ~= "true" and check ~= "runout" then
+  error("--set check must be true, false or runout, got '" .. check .. "'", 0)
+end
 local transfer = mpm.param("transfer", "apic")  -- apic | flip
 local averaged = mpm.param("cell_volumetric_strain", true)  -- the kernel's B-bar averaging
 local closure = mpm.param("crack_closure", true)            -- the kernel's crack closure
@@ -149,7 +154,17 @@ file:write(table.concat(lines, "\n"), "\n")
 file:close()
 for _, l in ipairs(lines) do print(l) end
 
-if check then
+if check == "runout" then
+  local earlier  -- the front 0.5 s before the end
+  for _, row in ipairs(front_rows) do
+    local t, x = row:match("^([%d.]+),([%d.]+)")
+    if t and tonumber(t) <= m:phase_time() - 0.5 + 1e-9 then earlier = tonumber(x) end
+  end
+  assert(front >= 0.42 and front <= 0.52, string.format("run-out %.3f m outside 0.42-0.52 m", front))
+  assert(earlier and front - earlier < 0.002,
+         string.format("the front still moves: %.4f m 0.5 s before the end, %.4f m at the end", earlier or 0, front))
+  print("check passed (run-out and the front at rest)")
+elseif check == "true" then
   assert(front >= 0.42 and front <= 0.52, string.format("run-out %.3f m outside 0.42-0.52 m", front))
   assert(#measured == 0 or worst <= 0.005, string.format("surface %.1f mm off the experiment", 1000 * worst))
   assert(at_rest, string.format("the deposit is still moving (%.3g m/s)", fastest))
