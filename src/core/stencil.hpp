@@ -48,15 +48,28 @@ bool make_stencil(const Grid<Dim>& grid, const Vec<Dim>& x, double l, Stencil<Di
   return true;
 }
 
-// Calls f(node, N, gradN) for every node of the stencil.
-template <int Dim, int K, class F>
-inline void for_each_node(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {
+namespace stencil_detail {
+// The nodes of a stencil with N and grad N, and with Offsets also x_node - x_p.
+template <bool Offsets, int Dim, int K, class F>
+inline void visit(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {
+  [[maybe_unused]] double off[Dim][K];
+  if constexpr (Offsets) {
+    const double h = grid.cell();
+    for (int d = 0; d < Dim; ++d) {
+      double centre = 0.0;  // in node steps from the stencil's first node
+      for (int k = 0; k < K; ++k) centre += k * st.w[d][k];
+      for (int k = 0; k < K; ++k) off[d][k] = h * (k - centre);
+    }
+  }
   if constexpr (Dim == 2) {
     const int sy = grid.stride(1);
     for (int b = 0; b < K; ++b)
       for (int a = 0; a < K; ++a) {
         const Vec<2> dN(st.dw[0][a] * st.w[1][b], st.w[0][a] * st.dw[1][b]);
-        f(st.base + a + b * sy, st.w[0][a] * st.w[1][b], dN);
+        if constexpr (Offsets)
+          f(st.base + a + b * sy, st.w[0][a] * st.w[1][b], dN, Vec<2>(off[0][a], off[1][b]));
+        else
+          f(st.base + a + b * sy, st.w[0][a] * st.w[1][b], dN);
       }
   } else {
     static_assert(Dim == 3);
@@ -66,9 +79,21 @@ inline void for_each_node(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& 
         for (int a = 0; a < K; ++a) {
           const Vec<3> dN(st.dw[0][a] * st.w[1][b] * st.w[2][c], st.w[0][a] * st.dw[1][b] * st.w[2][c],
                           st.w[0][a] * st.w[1][b] * st.dw[2][c]);
-          f(st.base + a + b * sy + c * sz, st.w[0][a] * st.w[1][b] * st.w[2][c], dN);
+          const int node = st.base + a + b * sy + c * sz;
+          const double N = st.w[0][a] * st.w[1][b] * st.w[2][c];
+          if constexpr (Offsets)
+            f(node, N, dN, Vec<3>(off[0][a], off[1][b], off[2][c]));
+          else
+            f(node, N, dN);
         }
   }
+}
+}  // namespace stencil_detail
+
+// Calls f(node, N, gradN) for every node of the stencil.
+template <int Dim, int K, class F>
+inline void for_each_node(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {
+  stencil_detail::visit<false>(st, grid, f);
 }
 
 // Calls f(node, N, gradN, dx) for every node of the stencil, dx = x_node - x_p. The centre is
@@ -76,32 +101,7 @@ inline void for_each_node(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& 
 // grid), so this serves the positions the stencil was made at, also after the particles moved.
 template <int Dim, int K, class F>
 inline void for_each_node_offset(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {
-  const double h = grid.cell();
-  double off[Dim][K];
-  for (int d = 0; d < Dim; ++d) {
-    double centre = 0.0;  // in node steps from the stencil's first node
-    for (int k = 0; k < K; ++k) centre += k * st.w[d][k];
-    for (int k = 0; k < K; ++k) off[d][k] = h * (k - centre);
-  }
-  if constexpr (Dim == 2) {
-    const int sy = grid.stride(1);
-    for (int b = 0; b < K; ++b)
-      for (int a = 0; a < K; ++a) {
-        const Vec<2> dN(st.dw[0][a] * st.w[1][b], st.w[0][a] * st.dw[1][b]);
-        f(st.base + a + b * sy, st.w[0][a] * st.w[1][b], dN, Vec<2>(off[0][a], off[1][b]));
-      }
-  } else {
-    static_assert(Dim == 3);
-    const int sy = grid.stride(1), sz = grid.stride(2);
-    for (int c = 0; c < K; ++c)
-      for (int b = 0; b < K; ++b)
-        for (int a = 0; a < K; ++a) {
-          const Vec<3> dN(st.dw[0][a] * st.w[1][b] * st.w[2][c], st.w[0][a] * st.dw[1][b] * st.w[2][c],
-                          st.w[0][a] * st.w[1][b] * st.dw[2][c]);
-          f(st.base + a + b * sy + c * sz, st.w[0][a] * st.w[1][b] * st.w[2][c], dN,
-            Vec<3>(off[0][a], off[1][b], off[2][c]));
-        }
-  }
+  stencil_detail::visit<true>(st, grid, f);
 }
 
 }  // namespace seismpm
