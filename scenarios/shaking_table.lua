@@ -17,7 +17,7 @@
 -- horizontal force on the soil), probe_ux.png, probe_uy.png, summary.txt, open_in_paraview.py.
 --
 --   seismpm scenarios/shaking_table.lua [--set cell=0.0125] [--set duration=14] [--set every=0.25]
---                                       [--set record=FILE.csv] [--set check=true]
+--                                       [--set record=FILE.csv] [--set check=true] [--set transfer=apic]
 
 local cell = mpm.param("cell", 0.0125)          -- m: 8,954 soil particles, 2-6 min on 2 cores
 local duration = mpm.param("duration", 14.0)    -- s of shaking
@@ -25,6 +25,7 @@ local every = mpm.param("every", 0.25)          -- s between ParaView files
 local record = mpm.param("record", "data/table_velocity.csv")
 local check = mpm.param("check", false)         -- assert the coarse physics (ctest)
 local flip = mpm.param("flip", 0.98)            -- FLIP share; the 2 % PIC share damps free-surface noise
+local transfer = mpm.param("transfer", "flip")  -- flip | apic (docs/kernel.md: velocity transfer)
 local verbose = mpm.param("verbose", false)     -- print the largest particle speed every 0.5 s
 
 local L, Hbox = 0.9, 0.6                        -- box inside (m)
@@ -73,7 +74,7 @@ end
 -- The model: the box walls one cell thick, the domain two cells beyond them.
 local t = cell
 local m = mpm.model{ domain = {{-2 * t, -2 * t}, {L + 2 * t, Hbox + 2 * t}}, cell = cell, gravity = {0, -g},
-                     shape = "gimp", flip = flip }
+                     shape = "gimp", flip = flip, transfer = transfer }
 local masa = mpm.material.mohr_coulomb{ density = rho, young = 2.57e6, poisson = 0.33, cohesion = c,
                                         friction = phi, dilation = 0, tension = 0 }
 local soil = m:body{ name = "soil", material = masa, ppc = 2,
