@@ -289,24 +289,17 @@ void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, co
     const Vec<Dim> mv = m * P.v[p];
     const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
     const Vec<Dim> mg = m * g;
-    // APIC maps the particle's affine velocity v + C (x_i - x_p); FLIP needs no node offsets.
-    auto add = [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& mvi) {
-      const int k = S.index(i);
-      if (k < 0) return;
-      const int s = S.slot(k, f);
-      S.mass[s] += N * m;
-      S.momentum[s] += N * mvi;
-      S.force[s] += N * mg - vs * dN;
-      S.gradient[s] += m * dN;
-    };
-    if (apic) {
-      const Mat<Dim> mC = m * P.affine[p];
-      for_each_node_offset(st[p], G, [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& dx) {
-        add(i, N, dN, Vec<Dim>(mv + mC * dx));
-      });
-    } else {
-      for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) { add(i, N, dN, mv); });
-    }
+    const Mat<Dim> mC = apic ? Mat<Dim>(m * P.affine[p]) : Mat<Dim>::Zero();
+    for_each_node_momentum(st[p], G, mv, apic ? &mC : nullptr,
+                           [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& mvi) {
+                             const int k = S.index(i);
+                             if (k < 0) return;
+                             const int s = S.slot(k, f);
+                             S.mass[s] += N * m;
+                             S.momentum[s] += N * mvi;
+                             S.force[s] += N * mg - vs * dN;
+                             S.gradient[s] += m * dN;
+                           });
   });
 }
 
@@ -465,18 +458,12 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
     if (body_rigid_[b] || !near_shared_[support.cell_of[p]]) return;
     const int f = field_of_body_[b];
     const Vec<Dim> mv = P.mass[p] * P.v[p];
-    if (apic) {
-      const Mat<Dim> mC = P.mass[p] * P.affine[p];
-      for_each_node_offset(st[p], grid, [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& dx) {
-        const int k = S.index(i);
-        if (k >= 0) S.momentum[S.slot(k, f)] += N * (mv + mC * dx);
-      });
-    } else {
-      for_each_node(st[p], grid, [&](int i, double N, const Vec<Dim>&) {
-        const int k = S.index(i);
-        if (k >= 0) S.momentum[S.slot(k, f)] += N * mv;
-      });
-    }
+    const Mat<Dim> mC = apic ? Mat<Dim>(P.mass[p] * P.affine[p]) : Mat<Dim>::Zero();
+    for_each_node_momentum(st[p], grid, mv, apic ? &mC : nullptr,
+                           [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& mvi) {
+                             const int k = S.index(i);
+                             if (k >= 0) S.momentum[S.slot(k, f)] += N * mvi;
+                           });
   });
   const int count = S.count();
 #pragma omp parallel for schedule(static)

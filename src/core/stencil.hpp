@@ -104,4 +104,17 @@ inline void for_each_node_offset(const Stencil<Dim, K>& st, const Grid<Dim>& gri
   stencil_detail::visit<true>(st, grid, f);
 }
 
+// Calls f(node, N, gradN, momentum) with the momentum a particle maps to each node of its stencil:
+// its own, mv, or with APIC's affine field (mC = m C, null under FLIP) mv + mC (x_node - x_p).
+template <int Dim, int K, class F>
+inline void for_each_node_momentum(const Stencil<Dim, K>& st, const Grid<Dim>& grid, const Vec<Dim>& mv,
+                                   const Mat<Dim>* mC, F&& f) {
+  if (mC)
+    for_each_node_offset(st, grid, [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& dx) {
+      f(i, N, dN, Vec<Dim>(mv + *mC * dx));
+    });
+  else
+    for_each_node(st, grid, [&](int i, double N, const Vec<Dim>& dN) { f(i, N, dN, mv); });
+}
+
 }  // namespace seismpm

@@ -23,20 +23,13 @@ void Model<Dim>::particles_to_grid() {
     const Vec<Dim> mv = m * P.v[p];
     const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
     const Vec<Dim> mg = m * g;
-    if (apic) {  // the momentum of the particle's affine velocity field v + C (x_i - x_p)
-      const Mat<Dim> mC = m * P.affine[p];
-      for_each_node_offset(st[p], G, [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& dx) {
-        G.mass[i] += N * m;
-        G.momentum[i] += N * (mv + mC * dx);
-        G.force[i] += N * mg - vs * dN;
-      });
-      return;
-    }
-    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>& dN) {
-      G.mass[i] += N * m;
-      G.momentum[i] += N * mv;
-      G.force[i] += N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
-    });
+    const Mat<Dim> mC = apic ? Mat<Dim>(m * P.affine[p]) : Mat<Dim>::Zero();
+    for_each_node_momentum(st[p], G, mv, apic ? &mC : nullptr,
+                           [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& mvi) {
+                             G.mass[i] += N * m;
+                             G.momentum[i] += N * mvi;
+                             G.force[i] += N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
+                           });
   });
   if constexpr (Contact) contact_.template particles_to_fields<Shape>(P, G, support_, g, apic);
 }
@@ -190,13 +183,9 @@ void Model<Dim>::remap_momentum() {
     if constexpr (Contact)
       if (contact_.rigid(P.body[p])) return;
     const Vec<Dim> mv = P.mass[p] * P.v[p];
-    if (apic) {
-      const Mat<Dim> mC = P.mass[p] * P.affine[p];
-      for_each_node_offset(
-          st[p], G, [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& dx) { G.momentum[i] += N * (mv + mC * dx); });
-      return;
-    }
-    for_each_node(st[p], G, [&](int i, double N, const Vec<Dim>&) { G.momentum[i] += N * mv; });
+    const Mat<Dim> mC = apic ? Mat<Dim>(P.mass[p] * P.affine[p]) : Mat<Dim>::Zero();
+    for_each_node_momentum(st[p], G, mv, apic ? &mC : nullptr,
+                           [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& mvi) { G.momentum[i] += N * mvi; });
   });
   const double eps = mass_threshold_;
 #pragma omp parallel for schedule(static)
