@@ -73,7 +73,7 @@ void taper_record(AccelerationRecord& r, double seconds) {
   }
 }
 
-double peak_acceleration(const std::vector<double>& a) {
+double peak_magnitude(const std::vector<double>& a) {
   double p = 0.0;
   for (double v : a) p = std::max(p, std::abs(v));
   return p;
@@ -81,7 +81,7 @@ double peak_acceleration(const std::vector<double>& a) {
 
 void scale_to_pga(AccelerationRecord& r, double pga) {
   check_parameter("pga", pga, above(0), "g");
-  const double peak = peak_acceleration(r.a);
+  const double peak = peak_magnitude(r.a);
   if (!(peak > 0.0))
     throw ParameterError({"pga"}, "cannot scale " + r.source + ": its acceleration is zero everywhere");
   const double factor = pga * kStandardGravity / peak;

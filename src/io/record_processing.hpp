@@ -28,7 +28,7 @@ AccelerationRecord window_record(const AccelerationRecord& record, double t0, do
 void taper_record(AccelerationRecord& record, double seconds);
 
 // The largest |a| (m/s^2).
-double peak_acceleration(const std::vector<double>& a);
+double peak_magnitude(const std::vector<double>& a);
 
 // Scales the acceleration so that its peak |a| is `pga` g (kStandardGravity). Throws ParameterError
 // ('pga') for pga <= 0 or not finite, and for a record that is zero everywhere (nothing to scale).

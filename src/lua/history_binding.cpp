@@ -153,12 +153,6 @@ CsvColumn column_key(const Args& a, const char* key, const char* fallback) {
   return CsvColumn(fallback);
 }
 
-double peak(const std::vector<double>& x) {
-  double p = 0.0;
-  for (double v : x) p = std::max(p, std::abs(v));
-  return p;
-}
-
 // key 'window': {t0, t1} in seconds, or nullopt when absent.
 std::optional<std::pair<double, double>> window_key(const Args& a) {
   lua_State* L = a.state();
@@ -210,17 +204,18 @@ ProcessedRecord process_record(const Args& a, AccelerationRecord record) {
     for (double& v : record.a) v *= scale;
     about << "scaled by " << scale << ", ";
   }
-  about << "PGA " << peak_acceleration(record.a) / kStandardGravity << " g";
+  about << "PGA " << peak_magnitude(record.a) / kStandardGravity << " g";
   const Baseline baseline = parse_baseline(a.choice("baseline"));
   const auto raw = integrate_record(record, Baseline::None);
   auto used = integrate_record(record, baseline);
   const bool velocity = a.choice("integrate") == "velocity";
   if (velocity || baseline != Baseline::None) {
-    about << "; velocity: peak " << peak(raw.v) << " m/s, end " << raw.v.back() << " m/s, end displacement "
+    about << "; velocity: peak " << peak_magnitude(raw.v) << " m/s, end " << raw.v.back() << " m/s, end displacement "
           << raw.d.back() << " m";
     if (baseline != Baseline::None)
       about << "; after the " << (baseline == Baseline::Linear ? "linear" : "quadratic") << " baseline: peak "
-            << peak(used.v) << " m/s, end " << used.v.back() << " m/s, end displacement " << used.d.back() << " m";
+            << peak_magnitude(used.v) << " m/s, end " << used.v.back() << " m/s, end displacement " << used.d.back()
+            << " m";
   }
   about << ")";
   auto acceleration = std::make_shared<AccelerationRecord>(AccelerationRecord{used.t, used.a, record.source});
@@ -310,7 +305,7 @@ const TableHistory& table_of(lua_State* L, const char* what) {
 }
 
 int history_peak(lua_State* L) {
-  lua_pushnumber(L, peak(table_of(L, "peak").values()));
+  lua_pushnumber(L, peak_magnitude(table_of(L, "peak").values()));
   return 1;
 }
 
