@@ -21,6 +21,10 @@ class Fix {
   virtual void before_step(Model<Dim>&, const StepContext&) {}
   // After particles-to-grid, on the nodal out-of-balance forces (local damping).
   virtual void nodal_forces(Model<Dim>&, const StepContext&) {}
+  // After every fix's nodal_forces (damping included), before the nodal velocity update: tractions and
+  // dashpots on grid edges, which must see the complete force (an implicit dashpot) and, on held
+  // nodes, the support's reaction undamped.
+  virtual void edge_forces(Model<Dim>&, const StepContext&) {}
   // After contact and the grid fixities were applied to a nodal velocity field (prescribed nodes).
   virtual void nodal_velocities(Model<Dim>&, const StepContext&, VelocityStage) {}
   // After the stress update and the clock, when the step is complete.

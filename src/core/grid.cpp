@@ -93,6 +93,30 @@ void Grid<Dim>::fix(Side side, unsigned dof_mask) {
 }
 
 template <int Dim>
+unsigned Grid<Dim>::held_on(Side side) const {
+  const int axis = static_cast<int>(side) / 2;
+  if (axis >= Dim) return 0;
+  int node = 0;
+  for (int d = 0; d < Dim; ++d) {
+    int c = nodes(d) / 2;  // away from the other edges (a domain spans at least 2 cells)
+    if (d == axis) c = static_cast<int>(side) % 2 == 0 ? ghost_ : cells_[axis] - ghost_;
+    node += c * stride_[d];
+  }
+  return fixity_[node];
+}
+
+template <int Dim>
+void Grid<Dim>::release(Side side, unsigned dof_mask) {
+  std::array<unsigned, 2 * Dim> held{};
+  for (int s = 0; s < 2 * Dim; ++s) held[s] = held_on(static_cast<Side>(s));
+  held[static_cast<int>(side)] &= ~dof_mask;
+  std::fill(fixity_.begin(), fixity_.end(), 0);
+  fixed_nodes_.clear();
+  for (int s = 0; s < 2 * Dim; ++s)
+    if (held[s]) fix(static_cast<Side>(s), held[s]);
+}
+
+template <int Dim>
 void Grid<Dim>::apply_fixities(std::vector<Vec<Dim>>& field) const {
   for (const int node : fixed_nodes_) {
     const unsigned f = fixity_[node];

@@ -49,6 +49,11 @@ class Grid {
   // Holds the given degrees of freedom at zero on every node of a domain edge and of the ghost
   // layers beyond it.
   void fix(Side side, unsigned dof_mask);
+  // Lets go of the given degrees of freedom on one domain edge (an edge boundary that held like a
+  // fixity in the gravity phase); what the other edges hold, corners included, stays held.
+  void release(Side side, unsigned dof_mask);
+  // The degrees of freedom held on a domain edge, read at its middle node.
+  unsigned held_on(Side side) const;
   // Nodes with at least one fixed degree of freedom and their masks.
   const std::vector<int>& fixed_nodes() const { return fixed_nodes_; }
   unsigned fixity(int node) const { return fixity_[node]; }

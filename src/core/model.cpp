@@ -380,6 +380,7 @@ void Model<Dim>::nodal_forces(const StepContext& c) {
     balance_ =
         measure_balance(grid_, Contact ? &contact_ : nullptr, mass_threshold_, settings_.gravity, balance_scratch_);
   for (auto& f : fixes_) f->nodal_forces(*this, c);
+  for (auto& f : fixes_) f->edge_forces(*this, c);
 }
 
 // The clock, the fixes' last word, the checks that the next step can start, and the periodic sort.

@@ -119,6 +119,32 @@ void Simulation<Dim>::set_damping(double alpha) {
   damping_->set_alpha(alpha);
 }
 
+template <int Dim>
+std::shared_ptr<EdgeBoundary<Dim>> Simulation<Dim>::add_boundary(const BoundarySettings<Dim>& settings) {
+  if (running_) throw std::logic_error("a run's call may not add a boundary");
+  for (const auto& b : boundaries_)
+    if (b->settings().side == settings.side) throw InputError("boundary: that side has a boundary already");
+  if (model_.grid().held_on(settings.side) != 0)
+    throw InputError("boundary: that side is held by m:fix; an edge is either fixed or a boundary");
+  auto boundary = std::make_shared<EdgeBoundary<Dim>>(model_.grid(), settings);
+  if (gravity_) boundary->hold(model_.grid());  // added while a gravity phase is interrupted
+  model_.add_fix(boundary);
+  boundaries_.push_back(boundary);
+  // Free-field columns stand on the base's boundary (the lower edge of the vertical axis).
+  std::shared_ptr<const EdgeBoundary<Dim>> base;
+  for (const auto& b : boundaries_)
+    if (b->settings().side == static_cast<Side>(2 * (Dim - 1))) base = b;
+  for (const auto& b : boundaries_)
+    if (b->settings().kind == BoundaryKind::FreeField) b->set_column_base(base);
+  return boundary;
+}
+
+// While a gravity phase runs, the boundaries hold their edges as fixities and record the reactions.
+template <int Dim>
+void Simulation<Dim>::hold_boundaries(bool hold) {
+  for (const auto& b : boundaries_) hold ? b->hold(model_.grid()) : b->release(model_.grid());
+}
+
 // --- runs and phases ---
 
 template <int Dim>
@@ -143,6 +169,7 @@ GravityPhaseResult Simulation<Dim>::gravity_phase(const GravityPhaseSettings& g)
   if (g.k0 > 0.0) set_k0_stresses(model_, g.k0);
   gravity_.emplace(GravityRun{g, model_.time(), model_.steps(), EquilibriumMonitor<Dim>(g.tolerance)});
   model_.set_balance_measure(true);
+  hold_boundaries(true);
   return run_gravity_phase(nullptr);
 }
 
@@ -163,9 +190,11 @@ GravityPhaseResult Simulation<Dim>::run_gravity_phase(const ActiveRun* resumed) 
   } catch (...) {
     model_.set_balance_measure(false);
     gravity_.reset();
+    hold_boundaries(false);
     throw;
   }
   model_.set_balance_measure(false);
+  hold_boundaries(false);
   const GravityRun phase = std::move(*gravity_);
   gravity_.reset();
   const GravityPhaseSettings& g = phase.settings;
@@ -354,6 +383,7 @@ void Simulation<Dim>::drop_interrupted_run() {
   if (interrupted_->kind == RunKind::Gravity) {
     gravity_.reset();
     model_.set_balance_measure(false);
+    hold_boundaries(false);
   }
   interrupted_.reset();
 }

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/edge_boundary.hpp"
 #include "core/local_damping.hpp"
 #include "core/model.hpp"
 #include "event_schedule.hpp"
@@ -88,6 +89,13 @@ class Simulation {
   void write();
   // probes.csv up to date with the probes' samples (before plotting it).
   void write_probes();
+
+  // --- the ground beyond the model ---
+  // An absorbing, compliant or free-field edge (one per side; not on a side held by Grid::fix). It holds
+  // like a fixity while a gravity phase runs and acts in every other run. A free-field side's column
+  // stands on the base's boundary when there is one.
+  std::shared_ptr<EdgeBoundary<Dim>> add_boundary(const BoundarySettings<Dim>& settings);
+  const std::vector<std::shared_ptr<EdgeBoundary<Dim>>>& boundaries() const { return boundaries_; }
 
   // --- how runs behave ---
   // The local damping coefficient for this and later runs (in [0, 1)).
@@ -173,6 +181,7 @@ class Simulation {
   void sample_probe(std::size_t k);
   void write_output();
   void begin_phase(const char* name, bool rigid_bodies_move);
+  void hold_boundaries(bool hold);
 
   Model<Dim> model_;
   EventSchedule schedule_;
@@ -182,6 +191,7 @@ class Simulation {
   EventSchedule::Stream output_stream_ = -1;
   bool write_at_run_end_ = true;
   std::shared_ptr<LocalDamping<Dim>> damping_;  // attached on first use
+  std::vector<std::shared_ptr<EdgeBoundary<Dim>>> boundaries_;
   std::string phase_ = "run";
   Progress::Mode progress_mode_ = Progress::Mode::Quiet;
   const std::atomic<bool>* interrupt_ = nullptr;
