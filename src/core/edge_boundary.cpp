@@ -64,7 +64,9 @@ EdgeBoundary<Dim>::EdgeBoundary(const Grid<Dim>& grid, const BoundarySettings<Di
     bool inside = true;
     for (int d = 0; d < Dim; ++d)
       if (d != a) inside = inside && c[d] >= g && c[d] <= grid.cells(d) - g;
-    if (inside) edge_nodes_.push_back(node);
+    if (!inside) continue;
+    edge_nodes_.push_back(node);
+    for (int layer = 1; layer <= g; ++layer) behind_.push_back(node + (low ? -layer : layer) * grid.stride(a));
   }
   reaction_.assign(held_nodes_.size(), Vec<Dim>::Zero());
 }
@@ -229,25 +231,62 @@ void EdgeBoundary<Dim>::edge_forces(Model<Dim>& model, const StepContext& c) {
   Vec<Dim> input = Vec<Dim>::Zero();
   if (settings_.kind == BoundaryKind::Compliant)
     for (int d = 0; d < Dim; ++d) input[d] = settings_.input[d] ? settings_.input[d]->at(t_end) : 0.0;
+  const int g = G.ghost();
   for (std::size_t k = 0; k < edge_nodes_.size(); ++k) {
     const int i = edge_nodes_[k];
-    const double m = G.mass[i], A = area_[k];
-    if (!(m > eps) || !(A > 0.0)) continue;
-    Vec<Dim> target = input;
-    if (column_node_[k] >= 0 && column_->has_soil(column_node_[k])) {
-      const int j = column_node_[k];
-      target = column_->velocity(j);
-      const Vec<Dim> traction = outward() * A * column_->face_stress(j, a);  // t = sigma n of the ground beyond
-      G.force[i] += traction;
-      last_force_ += traction;
+    // The edge node with the ghost nodes behind it, as one: their mass, momentum and force.
+    double m = G.mass[i];
+    Vec<Dim> p = G.momentum[i], f = G.force[i];
+    for (int l = 0; l < g; ++l) {
+      const int j = behind_[k * g + l];
+      m += G.mass[j], p += G.momentum[j], f += G.force[j];
     }
-    for (int d = 0; d < Dim; ++d) {
-      // Implicit dashpot: the force that ends the step at (p + dt (f + C target)) / (m + dt C).
-      const double C = (d == a ? rho_vp_[k] : rho_vs_[k]) * A;
-      const double df = C * (m * target[d] - G.momentum[i][d] - dt * G.force[i][d]) / (m + dt * C);
-      G.force[i][d] += df;
-      last_force_[d] += df;
+    const double A = area_[k];
+    if (!(m > eps)) continue;
+    if (A > 0.0) {
+      Vec<Dim> target = input;
+      if (column_node_[k] >= 0 && column_->has_soil(column_node_[k])) {
+        const int j = column_node_[k];
+        target = column_->velocity(j);
+        const Vec<Dim> traction = outward() * A * column_->face_stress(j, a);  // t = sigma n of the ground beyond
+        f += traction;
+        last_force_ += traction;
+      }
+      for (int d = 0; d < Dim; ++d) {
+        // Implicit dashpot: the force that ends the step at (p + dt (f + C target)) / (m + dt C).
+        const double C = (d == a ? rho_vp_[k] : rho_vs_[k]) * A;
+        const double df = C * (m * target[d] - p[d] - dt * f[d]) / (m + dt * C);
+        f[d] += df;
+        last_force_[d] += df;
+      }
     }
+    // Each node gets the force that brings it to the common end velocity.
+    const Vec<Dim> v = (p + dt * f) / m;
+    auto drive = [&](int node) {
+      if (G.mass[node] > eps) G.force[node] = (G.mass[node] * v - G.momentum[node]) / dt;
+    };
+    drive(i);
+    for (int l = 0; l < g; ++l) drive(behind_[k * g + l]);
+  }
+}
+
+template <int Dim>
+void EdgeBoundary<Dim>::nodal_velocities(Model<Dim>& model, const StepContext&, VelocityStage stage) {
+  if (holding_ || stage != VelocityStage::Remapped) return;
+  Grid<Dim>& G = model.grid();
+  const int g = G.ghost();
+  const double eps = model.mass_threshold();
+  if (g == 0) return;
+  for (std::size_t k = 0; k < edge_nodes_.size(); ++k) {
+    const int i = edge_nodes_[k];
+    double m = G.mass[i];
+    Vec<Dim> p = G.momentum[i];
+    for (int l = 0; l < g; ++l) m += G.mass[behind_[k * g + l]], p += G.momentum[behind_[k * g + l]];
+    if (!(m > eps)) continue;
+    const Vec<Dim> v = p / m;
+    if (G.mass[i] > eps) G.velocity[i] = v;
+    for (int l = 0; l < g; ++l)
+      if (G.mass[behind_[k * g + l]] > eps) G.velocity[behind_[k * g + l]] = v;
   }
 }
 

@@ -1,4 +1,4 @@
-// Building a model: m:body, m:rigid, m:contact, m:set_friction, m:fix, m:probe.
+// Building a model: m:body, m:rigid, m:contact, m:set_friction, m:fix, m:boundary, m:probe.
 #include <array>
 #include <cmath>
 #include <functional>
@@ -66,6 +66,22 @@ const Key kContactKeys[] = {
 const Key kFixKeys[] = {
     arg::choice("side", "left|right|bottom|top", nullptr, "the edge of the domain"),
     arg::choice("dof", "x|y|xy", "xy", "the velocity components held"),
+};
+const Key kBoundaryKeys[] = {
+    arg::choice("side", "left|right|bottom|top", nullptr, "the edge of the domain"),
+    arg::choice("kind", "absorbing|compliant|free_field", nullptr,
+                "absorbing: dashpots rho Vp (normal), rho Vs (along); compliant: the elastic half-space below, "
+                "with the outcrop motion coming in; free_field: a side that follows a 1D column of the soil next "
+                "to it"),
+    arg::custom("input", "{vx, vy}: numbers or histories", "m/s",
+                "compliant: the OUTCROP velocity (a record on rock at the surface, twice the incident wave), read "
+                "at the phase time")
+        .shown("{0, 0}"),
+    arg::number("density", "kg/m3", "of the medium beyond the edge (compliant: required)")
+        .in(above(0))
+        .shown("the soil next to the edge"),
+    arg::number("vs", "m/s", "its shear-wave speed").in(above(0)).shown("the soil next to the edge"),
+    arg::number("vp", "m/s", "its p-wave speed (> vs)").in(above(0)).shown("the soil next to the edge"),
 };
 const Key kProbeKeys[] = {
     arg::string("name", "the probe's name, unique in the model").shown("probeN"),
@@ -250,7 +266,43 @@ int model_fix(lua_State* L) {
   ModelHandle& h = *self<ModelObject>(L).handle;
   refuse_building(L, h, "fix an edge");
   const Args a(L, 2, kFixKeys);
-  h.model.grid().fix(parse_side(a.choice("side"), 2), parse_dof(a.choice("dof"), 2));
+  const Side side = parse_side(a.choice("side"), 2);
+  for (const auto& b : h.simulation.boundaries())
+    if (b->settings().side == side)
+      throw Error("key 'side': the " + a.choice("side") + " edge is a " +
+                  std::string(boundary_kind_name(b->settings().kind)) +
+                  " boundary (m:boundary); an edge is either fixed or a boundary");
+  h.model.grid().fix(side, parse_dof(a.choice("dof"), 2));
+  return 0;
+}
+
+// m:boundary{ side, kind, input = {vx, vy}, density, vs, vp }
+int model_boundary(lua_State* L) {
+  ModelHandle& h = *self<ModelObject>(L).handle;
+  refuse_building(L, h, "add a boundary");
+  const Args a(L, 2, kBoundaryKeys);
+  BoundarySettings<2> s;
+  s.side = parse_side(a.choice("side"), 2);
+  s.kind = parse_boundary_kind(a.choice("kind"));
+  const int given = a.has("density") + a.has("vs") + a.has("vp");
+  if (s.kind == BoundaryKind::Compliant && given < 3)
+    throw Error(std::string("key '") + (a.has("density") ? (a.has("vs") ? "vp" : "vs") : "density") +
+                "': a compliant edge needs the half-space below it: density, vs and vp");
+  if (given > 0 && given < 3)
+    throw Error(std::string("key '") + (a.has("density") ? (a.has("vs") ? "vp" : "vs") : "density") +
+                "': give density, vs and vp together, or none (the soil next to the edge)");
+  s.density = a.number("density", 0.0);
+  s.vs = a.number("vs", 0.0);
+  s.vp = a.number("vp", 0.0);
+  if (given == 3 && !(s.vp > s.vs)) throw Error("key 'vp': it must exceed vs");
+  if (a.has("input")) {
+    if (s.kind != BoundaryKind::Compliant)
+      throw Error("key 'input': only a compliant edge takes an input motion (kind = \"compliant\")");
+    a.push("input");
+    s.input = rigid_velocity(L, -1, "key 'input'");
+    lua_pop(L, 1);
+  }
+  h.simulation.add_boundary(s);
   return 0;
 }
 
@@ -313,6 +365,18 @@ const Function kBuilding[] = {
      "m:set_friction{ rock, bedding, friction = 0.2 }"},
     {"model:fix", &guarded<model_fix>, nullptr, kFixKeys, "Holds the grid nodes on one edge of the domain.",
      "m:fix{ side = \"bottom\", dof = \"xy\" }; m:fix{ side = \"left\", dof = \"x\" }"},
+    {"model:boundary", &guarded<model_boundary>, nullptr, kBoundaryKeys,
+     "Makes a grid edge stand for the ground beyond the model. absorbing: viscous (Lysmer-Kuhlemeyer) dashpots, "
+     "rho Vp normal and rho Vs along the edge, from the soil next to it unless density, vs, vp are given: waves "
+     "leave. compliant: the base on an elastic half-space (density, vs, vp required) with the OUTCROP velocity "
+     "`input` coming in: the traction rho_r Vs_r (vx_in - v) along and rho_r Vp_r (vy_in - v) normal, so the "
+     "incident wave enters and the reflected one leaves. free_field (left, right): the side follows a 1D elastic "
+     "column of the soil next to it (its layering, on the base's boundary), with dashpots for what the slope "
+     "radiates. While a gravity phase runs the edge holds like m:fix (the base in x and y, a side in its normal); "
+     "the force it carried stays as a constant force afterwards, so the ground neither sinks nor jumps when "
+     "shaking starts. Acts in every dynamic phase and in m:run. An edge is either fixed or a boundary.",
+     "m:boundary{ side = \"bottom\", kind = \"compliant\", input = { vx, 0 }, density = 2400, vs = 800, vp = 1390 }; "
+     "m:boundary{ side = \"left\", kind = \"free_field\" }"},
     {"model:probe", &guarded<model_probe>, nullptr, kProbeKeys,
      "A control point: follows a particle of the body and records all its fields every `every` seconds of "
      "simulated time and at the end of each run.",
