@@ -290,6 +290,43 @@ void EdgeBoundary<Dim>::nodal_velocities(Model<Dim>& model, const StepContext&, 
   }
 }
 
+template <int Dim>
+Vec<Dim> EdgeBoundary<Dim>::reaction_magnitude() const {
+  Vec<Dim> sum = Vec<Dim>::Zero();
+  for (const auto& r : reaction_) sum += r.cwiseAbs();
+  return sum;
+}
+
+template <int Dim>
+void EdgeBoundary<Dim>::correct_reaction(const Vec<Dim>& delta, const Vec<Dim>& magnitude) {
+  for (auto& r : reaction_)
+    for (int d = 0; d < Dim; ++d)
+      if (magnitude[d] > 0.0) r[d] += delta[d] * std::abs(r[d]) / magnitude[d];
+}
+
+template <int Dim>
+void balance_recorded_reactions(const Model<Dim>& model, const std::vector<std::shared_ptr<EdgeBoundary<Dim>>>& edges) {
+  if (edges.empty()) return;
+  for (const Body& b : model.bodies())
+    if (b.rigid) return;
+  const Particles<Dim>& P = model.particles();
+  Vec<Dim> weight = Vec<Dim>::Zero();
+  for (std::size_t p = 0; p < P.size(); ++p) weight += P.mass[p] * model.settings().gravity;
+  // What every held component carried in the last step (the edges' and m:fix's alike).
+  const Grid<Dim>& G = model.grid();
+  Vec<Dim> carried = Vec<Dim>::Zero();
+  for (const int node : G.fixed_nodes())
+    for (int d = 0; d < Dim; ++d)
+      if (G.fixity(node) & (1u << d)) carried[d] -= G.force[node][d];
+  Vec<Dim> magnitude = Vec<Dim>::Zero();
+  for (const auto& e : edges) magnitude += e->reaction_magnitude();
+  const Vec<Dim> missing = -weight - carried;
+  for (const auto& e : edges) e->correct_reaction(missing, magnitude);
+}
+
+template void balance_recorded_reactions<2>(const Model<2>&, const std::vector<std::shared_ptr<EdgeBoundary<2>>>&);
+template void balance_recorded_reactions<3>(const Model<3>&, const std::vector<std::shared_ptr<EdgeBoundary<3>>>&);
+
 template class EdgeBoundary<2>;
 template class EdgeBoundary<3>;
 

@@ -194,6 +194,7 @@ GravityPhaseResult Simulation<Dim>::run_gravity_phase(const ActiveRun* resumed) 
     throw;
   }
   model_.set_balance_measure(false);
+  balance_recorded_reactions(model_, boundaries_);  // the supports carry the whole weight from now on
   hold_boundaries(false);
   const GravityRun phase = std::move(*gravity_);
   gravity_.reset();
