@@ -481,9 +481,8 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
 #define SEISMPM_CONTACT_SHAPE(D, S)                                                                                    \
   template void ContactFields<D>::mark_shared_nodes<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, \
                                                        const StepContext&);                                            \
-  template void ContactFields<D>::particles_to_fields<S>(const Particles<D>&, const Grid<D>&,                          \
-                                                         const ParticleSupport<D>&, const Vec<D>&, bool,               \
-                                                         const MaterialConstants*);                                    \
+  template void ContactFields<D>::particles_to_fields<S>(                                                              \
+      const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, const Vec<D>&, bool, const MaterialConstants*);  \
   template void ContactFields<D>::remap_momentum<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&,    \
                                                     double, bool);
 SEISMPM_CONTACT_SHAPE(2, LinearShape)

@@ -49,8 +49,7 @@ double stable_time_step(const Particles<Dim>& particles, const MaterialConstants
 
 // The particle with the fastest signal, and that speed (the one that sets the CFL time step).
 template <int Dim>
-std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c,
-                                              double cell);
+std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c, double cell);
 
 template <int Dim>
 class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)

@@ -160,27 +160,27 @@ void put_material(SectionWriter& w, const Material& m) {
 
 // A deformable material of `kind`, from its parameters.
 std::shared_ptr<Material> get_deformable(SectionReader& r, const std::string& kind) {
-    if (kind == "linear_elastic") {
-      const double density = r.f64(), young = r.f64(), poisson = r.f64();
-      return std::make_shared<LinearElastic>(density, young, poisson);
-    }
-    if (kind == "mohr_coulomb") {
-      MohrCoulombParameters p;
-      for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
-        *v = r.f64();
-      p.softening = r.boolean();
-      for (double* v : {&p.residual_cohesion, &p.residual_friction, &p.softening_strain}) *v = r.f64();
-      return std::make_shared<MohrCoulomb>(p);
-    }
-    if (kind == "drucker_prager") {
-      DruckerPragerParameters p;
-      for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
-        *v = r.f64();
-      const std::uint8_t fit = r.u8();
-      if (fit > static_cast<std::uint8_t>(DruckerPragerFit::Inner)) r.fail("an unknown Drucker-Prager fit");
-      p.fit = static_cast<DruckerPragerFit>(fit);
-      return std::make_shared<DruckerPrager>(p);
-    }
+  if (kind == "linear_elastic") {
+    const double density = r.f64(), young = r.f64(), poisson = r.f64();
+    return std::make_shared<LinearElastic>(density, young, poisson);
+  }
+  if (kind == "mohr_coulomb") {
+    MohrCoulombParameters p;
+    for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
+      *v = r.f64();
+    p.softening = r.boolean();
+    for (double* v : {&p.residual_cohesion, &p.residual_friction, &p.softening_strain}) *v = r.f64();
+    return std::make_shared<MohrCoulomb>(p);
+  }
+  if (kind == "drucker_prager") {
+    DruckerPragerParameters p;
+    for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
+      *v = r.f64();
+    const std::uint8_t fit = r.u8();
+    if (fit > static_cast<std::uint8_t>(DruckerPragerFit::Inner)) r.fail("an unknown Drucker-Prager fit");
+    p.fit = static_cast<DruckerPragerFit>(fit);
+    return std::make_shared<DruckerPrager>(p);
+  }
   r.fail("a material of unknown kind '" + kind + "'");
 }
 

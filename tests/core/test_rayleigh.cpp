@@ -48,8 +48,7 @@ Decay measure_decay(const std::vector<double>& t, const std::vector<double>& v) 
 
 }  // namespace
 
-TEST_CASE("rayleigh: a ratio at two frequencies gives that ratio at both, less between",
-          "[core][rayleigh]") {
+TEST_CASE("rayleigh: a ratio at two frequencies gives that ratio at both, less between", "[core][rayleigh]") {
   const Rayleigh r = Rayleigh::from_ratio(0.05, 1.0, 5.0);
   const double w1 = 2 * kPi, w2 = 10 * kPi;
   CHECK(r.alpha == Approx(2 * 0.05 * w1 * w2 / (w1 + w2)));
@@ -70,7 +69,9 @@ TEST_CASE("rayleigh: a ratio at two frequencies gives that ratio at both, less b
 
 TEST_CASE("rayleigh: the vibrating bar's first mode decays at xi(w) = alpha / 2w + beta w / 2",
           "[core][rayleigh][verification]") {
-  cases::VibratingBar bar;  // 25 cells, uGIMP, first mode 0.1 Hz (w = 0.628 rad/s)
+  cases::VibratingBar bar;  // uGIMP, first mode 0.1 Hz (w = 0.628 rad/s)
+  bar.cells = 13;           // coarse and a long step: a second per case, the ratios still within 0.1 %
+  bar.cfl = 0.4;
   const double w = bar.omega(), f = w / (2 * kPi);
   SECTION("undamped: the transfers' own damping is small beside the ratios checked below") {
     const auto r = cases::run_vibrating_bar(bar, 3.0);
@@ -92,8 +93,8 @@ TEST_CASE("rayleigh: the vibrating bar's first mode decays at xi(w) = alpha / 2w
   const double expected = c.rayleigh.ratio_at(d.omega);
   CAPTURE(c.name, c.rayleigh.alpha, c.rayleigh.beta, d.ratio, expected, d.omega, w, d.extremes);
   CHECK(d.extremes >= 4);
-  CHECK(d.omega == Approx(w).epsilon(0.02));
-  CHECK(d.ratio == Approx(expected).epsilon(0.03));
+  CHECK(d.omega == Approx(w).epsilon(0.03));
+  CHECK(d.ratio == Approx(expected).epsilon(0.01));  // measured: within 0.1 %
 }
 
 TEST_CASE("rayleigh: the mass part acts on particles next to another body (contact fields)",

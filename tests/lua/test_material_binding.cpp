@@ -39,8 +39,8 @@ TEST_CASE("rayleigh on a material: ratio at two frequencies or the coefficients"
 TEST_CASE("rayleigh on a material: bad values are named with the allowed range", "[lua][material][rayleigh]") {
   LuaFixture f;
   const auto error = [&](const std::string& rayleigh) {
-    return f.error_of("mpm.material.linear_elastic{ density = 2000, young = 1e8, poisson = 0.25, rayleigh = " +
-                      rayleigh + " }");
+    return f.error_of(
+        "mpm.material.linear_elastic{ density = 2000, young = 1e8, poisson = 0.25, rayleigh = " + rayleigh + " }");
   };
   CHECK_THAT(error("{ ratio = 1.2, frequencies = {1, 5} }"),
              Catch::Contains("key 'rayleigh': key 'ratio' must be in [0, 1), got 1.2"));

@@ -202,7 +202,10 @@ std::string as_version_2(const std::string& v3) {
         kept += take(payload, p, 4 + u32(payload, p));  // name
         const std::string kind = payload.substr(p + 4, u32(payload, p));
         kept += take(payload, p, 4 + kind.size());
-        const std::size_t bytes = kind == "linear_elastic" ? 24 : kind == "mohr_coulomb" ? 81 : kind == "rigid" ? 8 : 57;
+        const std::size_t bytes = kind == "linear_elastic" ? 24
+                                  : kind == "mohr_coulomb" ? 81
+                                  : kind == "rigid"        ? 8
+                                                           : 57;
         kept += take(payload, p, bytes);
         if (kind != "rigid") take(payload, p, 16);  // alpha, beta
       }
@@ -232,17 +235,17 @@ TEST_CASE("checkpoint: a Rayleigh-damped run restored mid-way ends bit for bit, 
           "[run][checkpoint][rayleigh]") {
   const std::string dir_a = temp_dir("seismpm_ckpt_ra"), dir_b = temp_dir("seismpm_ckpt_rb");
   const std::string file = dir_b + "/mid.chk";
-  const Rayleigh damping = Rayleigh::from_ratio(0.05, 2.0, 20.0);
+  const Rayleigh damping = Rayleigh::from_ratio(0.02, 2.0, 20.0);
   auto a = shaken_slope(dir_a, false, Transfer::Flip, damping);
-  a->dynamic_phase(0.15, 0.0);
+  a->dynamic_phase(0.08, 0.0);
   {
     auto b = shaken_slope(dir_b, false, Transfer::Flip, damping);
     bool written = false;
     b->set_periodic_checkpoint(file, 0.0, [&] {
-      if (written || b->model().phase_time() < 0.06) return false;
+      if (written || b->model().phase_time() < 0.03) return false;
       return written = true;
     });
-    b->dynamic_phase(0.15, 0.0);
+    b->dynamic_phase(0.08, 0.0);
     REQUIRE(written);
   }
   const CheckpointReader checkpoint(file);
@@ -263,10 +266,10 @@ TEST_CASE("checkpoint: a Rayleigh-damped run restored mid-way ends bit for bit, 
 TEST_CASE("checkpoint: a version 2 file is read as undamped", "[run][checkpoint][rayleigh]") {
   const std::string dir_a = temp_dir("seismpm_ckpt_2a"), dir_b = temp_dir("seismpm_ckpt_2b");
   auto a = shaken_slope(dir_a);
-  a->dynamic_phase(0.05, 0.0);
+  a->dynamic_phase(0.03, 0.0);
   {
     auto b = shaken_slope(dir_b);
-    b->dynamic_phase(0.05, 0.0);
+    b->dynamic_phase(0.03, 0.0);
     write_checkpoint(*b, dir_b + "/v3.chk");
   }
   std::ofstream(dir_b + "/v2.chk", std::ios::binary) << as_version_2(read_text(dir_b + "/v3.chk"));
@@ -276,8 +279,8 @@ TEST_CASE("checkpoint: a version 2 file is read as undamped", "[run][checkpoint]
   restore_checkpoint(v2, c);
   CHECK_FALSE(c.model().material(0).rayleigh().any());
   require_same_state(*a, c);
-  a->dynamic_phase(0.05, 0.0);
-  c.dynamic_phase(0.05, 0.0);
+  a->dynamic_phase(0.03, 0.0);
+  c.dynamic_phase(0.03, 0.0);
   require_same_state(*a, c);
 }
 
