@@ -1,7 +1,7 @@
 // Rayleigh damping: the coefficients from a ratio at two frequencies, the damping ratio the vibrating
 // bar's first mode shows (logarithmic decrement) against xi(w) = alpha / 2w + beta w / 2 for the mass
 // part, the stiffness part and the two-frequency form, the mass part through contact fields, and the
-// stable time step that stiffness-proportional damping shortens.
+// stable time step that stiffness-proportional damping shortens, and strength reduction keeping it.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "cases/vibrating_bar.hpp"
+#include "materials/drucker_prager.hpp"
+#include "materials/mohr_coulomb.hpp"
 
 using namespace seismpm;
 
@@ -141,4 +143,21 @@ TEST_CASE("rayleigh: stiffness-proportional damping shortens the stable time ste
   auto mass_damped = bar.build();
   for (auto& v : mass_damped->particles().v) v.setZero();
   CHECK(mass_damped->stable_time_step() == plain->stable_time_step());
+}
+
+TEST_CASE("rayleigh: a strength-reduced copy keeps the damping", "[core][rayleigh][strength_reduction]") {
+  MohrCoulombParameters mc;
+  mc.density = 1800, mc.young = 5e7, mc.poisson = 0.3, mc.cohesion = 5e3, mc.friction = 30;
+  DruckerPragerParameters dp;
+  dp.density = 1800, dp.young = 5e7, dp.poisson = 0.3, dp.cohesion = 5e3, dp.friction = 30;
+  const Rayleigh r{0.7, 2e-3};
+  for (std::shared_ptr<Material> m : {std::shared_ptr<Material>(std::make_shared<MohrCoulomb>(mc)),
+                                      std::shared_ptr<Material>(std::make_shared<DruckerPrager>(dp))}) {
+    CAPTURE(m->kind());
+    m->set_rayleigh(r);
+    const auto reduced = m->with_reduced_strength(1.5);
+    REQUIRE(reduced);
+    CHECK(reduced->rayleigh().alpha == r.alpha);
+    CHECK(reduced->rayleigh().beta == r.beta);
+  }
 }
