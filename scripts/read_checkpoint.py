@@ -5,17 +5,18 @@
     python3 scripts/read_checkpoint.py FILE FIELD ...  # also these particle members (x u v mass ...)
 
 As a module: read_checkpoint(path) -> dict of section tag -> payload bytes (checked: magic, version,
-CRC-32 of every section), and particles(sections, dim) -> dict of member name -> list of values.
+CRC-32 of every section) and "version" -> the format version, and particles(sections, dim) -> dict of
+member name -> list of values (a version 2 file's damping_stress as zeros).
 """
 import struct
 import sys
 import zlib
 
 MAGIC = b"SEISMPMCHK"
-VERSION = 2
+VERSIONS = (2, 3)  # 3 added Rayleigh damping (damping_stress; alpha, beta per deformable material)
 # Particles::for_each_member's order; the element size comes from the file.
-PARTICLE_MEMBERS = ["x", "u", "v", "affine", "mass", "volume", "half_width", "stress", "strain", "plastic_strain",
-                    "yield", "normal", "id", "body", "material"]
+PARTICLE_MEMBERS = ["x", "u", "v", "affine", "mass", "volume", "half_width", "stress", "damping_stress", "strain",
+                    "plastic_strain", "yield", "normal", "id", "body", "material"]
 INTEGER_MEMBERS = {"yield": "B", "id": "i", "body": "H", "material": "H"}
 
 
@@ -30,9 +31,9 @@ def read_checkpoint(path):
     if data[:10] != MAGIC:
         raise CheckpointError(f"{path}: not a seismpm checkpoint")
     (version,) = struct.unpack_from("<H", data, 10)
-    if version != VERSION:
-        raise CheckpointError(f"{path}: format version {version}, this reader knows {VERSION}")
-    sections, at = {}, 16
+    if version not in VERSIONS:
+        raise CheckpointError(f"{path}: format version {version}, this reader knows {VERSIONS}")
+    sections, at = {"version": version}, 16
     while True:
         if len(data) - at < 20:
             raise CheckpointError(f"{path}: truncated (no END section)")
@@ -85,6 +86,9 @@ def particles(sections, dim):
     n = r.take("q")
     out = {}
     for name in PARTICLE_MEMBERS:
+        if name == "damping_stress" and sections["version"] < 3:
+            out[name] = [(0.0,) * 6] * n  # before Rayleigh damping: none
+            continue
         count, size = r.take("q"), r.take("I")
         raw = r.data[r.at:r.at + count * size]
         r.at += count * size
@@ -110,7 +114,8 @@ def main(argv):
         return 1
     m = meta(sections)
     print(f"{argv[1]}: {m['dim']}D model, t = {m['time']!r} s, step {m['steps']}, phase {m['phase']}")
-    print("sections: " + ", ".join(f"{t} ({len(p)} bytes)" for t, p in sections.items()))
+    print(f"format version {sections['version']}; sections: " +
+          ", ".join(f"{t} ({len(p)} bytes)" for t, p in sections.items() if t != "version"))
     for b in bodies(sections):
         print(f"body '{b['name']}': {'rigid' if b['rigid'] else 'deformable'}, ppc {b['ppc']}")
     p = particles(sections, m["dim"])

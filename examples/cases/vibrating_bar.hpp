@@ -25,6 +25,7 @@ struct VibratingBar {
   ShapeKind shape = ShapeKind::Gimp;
   Scheme scheme = Scheme::Musl;
   double cfl = 0.1;
+  Rayleigh rayleigh;  // none by default
 
   double wave_speed() const { return std::sqrt(young / density); }
   double omega() const { return std::numbers::pi / (2.0 * length) * wave_speed(); }
@@ -42,7 +43,9 @@ struct VibratingBar {
     s.scheme = scheme;
     s.cfl = cfl;
     auto m = std::make_unique<Model<2>>(s);
-    const int mat = m->add_material(std::make_shared<LinearElastic>(density, young, 0.0));
+    auto material = std::make_shared<LinearElastic>(density, young, 0.0);
+    material->set_rayleigh(rayleigh);
+    const int mat = m->add_material(material);
     const int body = m->add_body("bar", ppc);
     m->fill_box(body, mat, Vec<2>(0.0, 0.0), Vec<2>(length, h));
     m->grid().fix(Side::Left, FixX);

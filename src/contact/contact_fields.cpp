@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/format.hpp"
+#include "core/particle_forces.hpp"
 #include "node_contact.hpp"
 
 namespace seismpm {
@@ -255,7 +256,8 @@ bool ContactFields<Dim>::held(int k) const {
 template <int Dim>
 template <class Shape>
 void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, const Grid<Dim>& grid,
-                                             const ParticleSupport<Dim>& support, const Vec<Dim>& gravity, bool apic) {
+                                             const ParticleSupport<Dim>& support, const Vec<Dim>& gravity, bool apic,
+                                             const MaterialConstants* damped) {
   const auto& st = support.template stencils<Shape>();
   const auto& P = particles;
   const auto& G = grid;
@@ -287,8 +289,9 @@ void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, co
     if (!near_shared_[support.cell_of[p]]) return;
     const double m = P.mass[p];
     const Vec<Dim> mv = m * P.v[p];
-    const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
-    const Vec<Dim> mg = m * g;
+    const ParticleForceTerms<Dim> t = particle_force_terms(P, damped, g, p);  // with Rayleigh damping's
+    const Vec<Dim>& mg = t.mg;
+    const Mat<Dim>& vs = t.vs;
     const Mat<Dim> mC = apic ? Mat<Dim>(m * P.affine[p]) : Mat<Dim>::Zero();
     for_each_node_momentum(st[p], G, mv, apic ? &mC : nullptr,
                            [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& mvi) {
@@ -478,8 +481,8 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
 #define SEISMPM_CONTACT_SHAPE(D, S)                                                                                    \
   template void ContactFields<D>::mark_shared_nodes<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, \
                                                        const StepContext&);                                            \
-  template void ContactFields<D>::particles_to_fields<S>(const Particles<D>&, const Grid<D>&,                          \
-                                                         const ParticleSupport<D>&, const Vec<D>&, bool);              \
+  template void ContactFields<D>::particles_to_fields<S>(                                                              \
+      const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&, const Vec<D>&, bool, const MaterialConstants*);  \
   template void ContactFields<D>::remap_momentum<S>(const Particles<D>&, const Grid<D>&, const ParticleSupport<D>&,    \
                                                     double, bool);
 SEISMPM_CONTACT_SHAPE(2, LinearShape)

@@ -22,6 +22,8 @@
 
 namespace seismpm {
 
+struct MaterialConstants;  // core/time_step.hpp
+
 struct ContactPair {
   int a, b;
   double friction;  // Coulomb mu >= 0
@@ -59,10 +61,11 @@ class ContactFields {
   void mark_shared_nodes(const Particles<Dim>& particles, const Grid<Dim>& grid, const ParticleSupport<Dim>& support,
                          const StepContext& c);
   // Each field's own mass, momentum, force and normal at the shared nodes (the model maps the common
-  // fields, without rigid particles).
+  // fields, without rigid particles). `damped`: the materials' constants when some material is
+  // Rayleigh-damped, else null.
   template <class Shape>
   void particles_to_fields(const Particles<Dim>& particles, const Grid<Dim>& grid, const ParticleSupport<Dim>& support,
-                           const Vec<Dim>& gravity, bool apic);
+                           const Vec<Dim>& gravity, bool apic, const MaterialConstants* damped = nullptr);
   // Each field's velocity at the shared nodes: a rigid field's the weighted average of its particles'
   // (the paper's Eq. 9), a deformable field's from its momentum and force.
   void update_velocities(double dt, double min_mass);

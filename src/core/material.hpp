@@ -6,6 +6,7 @@
 #include <memory>
 #include <string_view>
 
+#include "rayleigh.hpp"
 #include "types.hpp"
 
 namespace seismpm {
@@ -44,8 +45,21 @@ class Material {
   // frictional strength to reduce (elastic, rigid).
   virtual std::shared_ptr<const Material> with_reduced_strength(double /*srf*/) const { return nullptr; }
 
+  // Rayleigh damping (none by default). Set once, before the material is shared with a model.
+  const Rayleigh& rayleigh() const { return rayleigh_; }
+  void set_rayleigh(const Rayleigh& r) { rayleigh_ = Rayleigh::coefficients(r.alpha, r.beta); }
+
+ protected:
+  // `copy` (a variant of this material, such as a strength-reduced one) with this material's damping.
+  template <class M>
+  std::shared_ptr<const Material> with_my_damping(std::shared_ptr<M> copy) const {
+    copy->set_rayleigh(rayleigh_);
+    return copy;
+  }
+
  private:
   double density_;
+  Rayleigh rayleigh_;
 };
 
 }  // namespace seismpm

@@ -90,6 +90,9 @@ void Model<Dim>::replace_material(int index, std::shared_ptr<const Material> mat
   MaterialConstants constants;  // rebuilt whole: one source of truth for what the step reads
   for (const auto& m : materials_) constants.add(*m);
   constants_ = std::move(constants);
+  // Undamped now: no viscous stress of an earlier damping may wait for damping to come back.
+  if (!constants_.any_rayleigh)
+    for (auto& s : particles_.damping_stress) s.setZero();
 }
 
 template <int Dim>
@@ -345,7 +348,7 @@ StepContext Model<Dim>::next_step(double dt_max) {
   if (particles_.size() == 0) throw InputError("model: no particles to step");
   const double dt = time_step_.next(settings_.fixed_dt > 0.0 ? settings_.fixed_dt : stable_time_step(), dt_max);
   if (time_step_.collapsed(dt, dt_max)) {
-    const auto [fastest, speed] = fastest_signal(particles_, constants_);
+    const auto [fastest, speed] = fastest_signal(particles_, constants_, grid_.cell());
     std::ostringstream os;
     os << "the time step collapsed to " << dt << " s (first step " << time_step_.first()
        << " s): wave speed + velocity " << speed << " m/s";

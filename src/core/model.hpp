@@ -209,6 +209,7 @@ class Model {
   template <bool Contact>
   void rotate_close_and_update_volume();
   void integrate_materials();
+  void rayleigh_stresses(const StepContext& c);
   void finish_step(const StepContext& c);
 
   // Upkeep (particle_order.cpp, particle_checks.cpp).

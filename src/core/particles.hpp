@@ -19,6 +19,7 @@ struct Particles {
   std::vector<double> volume;          // m^3 (m^2 per metre in 2D)
   std::vector<double> half_width;      // uGIMP half-width l in cell units, fixed at creation
   std::vector<Sym> stress;             // Cauchy stress (Pa), tension positive
+  std::vector<Sym> damping_stress;     // Rayleigh: the viscous stress beta D : (de / dt) of the last step; else 0
   std::vector<Sym> strain;             // total strain since the last reset
   std::vector<double> plastic_strain;  // accumulated plastic shear strain
   std::vector<std::uint8_t> yield;     // 1 when the last update was plastic
@@ -66,6 +67,7 @@ struct Particles {
     f(s.volume);
     f(s.half_width);
     f(s.stress);
+    f(s.damping_stress);
     f(s.strain);
     f(s.plastic_strain);
     f(s.yield);

@@ -1,6 +1,6 @@
 // The stress update of the step: velocity gradients from the (re-mapped) nodal velocities, the
 // cell-averaged volumetric strain, the objective rotation, crack closure and the volume, then the
-// constitutive models, one batch per material.
+// constitutive models, one batch per material, and Rayleigh damping's viscous stresses.
 #include "model.hpp"
 #include "objective_rate.hpp"
 
@@ -13,6 +13,7 @@ void Model<Dim>::update_stress(const StepContext& c) {
   if (settings_.cell_volumetric_strain) average_volumetric_strain<Contact>();
   rotate_close_and_update_volume<Contact>();
   integrate_materials();
+  if (constants_.any_rayleigh) rayleigh_stresses(c);
 }
 
 // Strain increment dt sym(L) and spin dt skw(L), L_ab = dv_a / dx_b, per particle; none for rigid ones.
@@ -146,6 +147,33 @@ void Model<Dim>::integrate_materials() {
   }
 }
 
+// The stiffness-proportional part of Rayleigh damping: sigma_v = beta D : (de / dt), D the elastic
+// stiffness (K tr I + 2G dev), from the strain increment the material saw (after B-bar and crack
+// closure). Elastic D also where the material yields: the damping is a small-strain (elastic) one.
+template <int Dim>
+void Model<Dim>::rayleigh_stresses(const StepContext& c) {
+  const int n = static_cast<int>(particles_.size());
+  const double inv_dt = 1.0 / c.dt;
+  const auto& C = constants_;
+  auto& P = particles_;
+#pragma omp parallel for schedule(static)
+  for (int p = 0; p < n; ++p) {
+    const int m = P.material[p];
+    const double beta = C.rayleigh_beta[m];
+    if (!(beta > 0.0)) {
+      P.damping_stress[p].setZero();
+      continue;
+    }
+    const Sym rate = inv_dt * strain_increment_[p];
+    const double vol = trace(rate) / 3.0;
+    Sym dev = rate;
+    for (int d = 0; d < 3; ++d) dev[d] -= vol;
+    Sym s = (2.0 * beta * C.shear_modulus[m]) * dev;
+    for (int d = 0; d < 3; ++d) s[d] += 3.0 * beta * C.bulk_modulus[m] * vol;
+    P.damping_stress[p] = s;
+  }
+}
+
 template <int Dim>
 void Model<Dim>::rebuild_material_lists() {
   material_particles_.assign(materials_.size(), {});
@@ -165,6 +193,8 @@ SEISMPM_FOR_EACH_STEP_VARIANT(SEISMPM_STRESS, SEISMPM_STRESS_CELLS)
 #undef SEISMPM_STRESS_CELLS
 template void Model<2>::integrate_materials();
 template void Model<3>::integrate_materials();
+template void Model<2>::rayleigh_stresses(const StepContext&);
+template void Model<3>::rayleigh_stresses(const StepContext&);
 template void Model<2>::rebuild_material_lists();
 template void Model<3>::rebuild_material_lists();
 

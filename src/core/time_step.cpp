@@ -10,17 +10,18 @@ double stable_time_step(const Particles<Dim>& particles, const MaterialConstants
   double max_speed = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_speed)
   for (int p = 0; p < n; ++p) {
-    max_speed = std::max(max_speed, signal_speed(particles, c, p));
+    max_speed = std::max(max_speed, signal_speed(particles, c, p, cell));
   }
   return cfl * cell / max_speed;
 }
 
 template <int Dim>
-std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c) {
+std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c,
+                                              double cell) {
   std::size_t fastest = 0;
   double speed = -1.0;
   for (std::size_t p = 0; p < particles.size(); ++p) {
-    const double s = signal_speed(particles, c, p);
+    const double s = signal_speed(particles, c, p, cell);
     if (!(s <= speed)) fastest = p, speed = s;  // a NaN speed is the one to name
   }
   return {fastest, speed};
@@ -28,7 +29,7 @@ std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, c
 
 template double stable_time_step<2>(const Particles<2>&, const MaterialConstants&, double, double);
 template double stable_time_step<3>(const Particles<3>&, const MaterialConstants&, double, double);
-template std::pair<std::size_t, double> fastest_signal<2>(const Particles<2>&, const MaterialConstants&);
-template std::pair<std::size_t, double> fastest_signal<3>(const Particles<3>&, const MaterialConstants&);
+template std::pair<std::size_t, double> fastest_signal<2>(const Particles<2>&, const MaterialConstants&, double);
+template std::pair<std::size_t, double> fastest_signal<3>(const Particles<3>&, const MaterialConstants&, double);
 
 }  // namespace seismpm

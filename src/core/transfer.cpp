@@ -3,17 +3,20 @@
 // ContactFields, and the particles near them read their own field's slots.
 #include "held_edges.hpp"
 #include "model.hpp"
+#include "particle_forces.hpp"
 
 namespace seismpm {
 
 // Nodal mass, momentum and force f = sum N m g - V sigma grad N from every deformable particle: the
-// common fields. Rigid particles map only to their own field's slots (ContactFields).
+// common fields. Rigid particles map only to their own field's slots (ContactFields). Rayleigh damping
+// adds to the particle's two terms, before the node loop: f = sum N (m g - alpha m v) - V (sigma + sigma_v) grad N.
 template <int Dim>
 template <class Shape, bool Contact>
 void Model<Dim>::particles_to_grid() {
   const auto& st = support_.template stencils<Shape>();
   const Vec<Dim> g = settings_.gravity;
   const bool apic = settings_.transfer == Transfer::Apic;
+  const MaterialConstants* damped = constants_.any_rayleigh ? &constants_ : nullptr;
   auto& P = particles_;
   auto& G = grid_;
   support_.schedule.for_each([&](int p) {
@@ -21,8 +24,9 @@ void Model<Dim>::particles_to_grid() {
       if (contact_.rigid(P.body[p])) return;
     const double m = P.mass[p];
     const Vec<Dim> mv = m * P.v[p];
-    const Mat<Dim> vs = P.volume[p] * in_plane<Dim>(P.stress[p]);
-    const Vec<Dim> mg = m * g;
+    const ParticleForceTerms<Dim> t = particle_force_terms(P, damped, g, p);
+    const Vec<Dim>& mg = t.mg;
+    const Mat<Dim>& vs = t.vs;
     const Mat<Dim> mC = apic ? Mat<Dim>(m * P.affine[p]) : Mat<Dim>::Zero();
     for_each_node_momentum(st[p], G, mv, apic ? &mC : nullptr,
                            [&](int i, double N, const Vec<Dim>& dN, const Vec<Dim>& mvi) {
@@ -31,7 +35,7 @@ void Model<Dim>::particles_to_grid() {
                              G.force[i] += N * mg - vs * dN;  // f_ext + f_int, f_int = -V sigma . grad N
                            });
   });
-  if constexpr (Contact) contact_.template particles_to_fields<Shape>(P, G, support_, g, apic);
+  if constexpr (Contact) contact_.template particles_to_fields<Shape>(P, G, support_, g, apic, damped);
 }
 
 template <int Dim>

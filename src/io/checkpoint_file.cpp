@@ -180,9 +180,10 @@ CheckpointReader::CheckpointReader(const std::string& path) : path_(path) {
     throw bad("not a seismpm checkpoint (it does not start with SEISMPMCHK)");
   std::uint16_t version;
   std::memcpy(&version, bytes_.data() + kCheckpointMagic.size(), 2);
-  if (version != kCheckpointVersion)
-    throw bad("format version " + std::to_string(version) + ", but this seismpm reads version " +
-              std::to_string(kCheckpointVersion) + " only");
+  if (version < kOldestCheckpointVersion || version > kCheckpointVersion)
+    throw bad("format version " + std::to_string(version) + ", but this seismpm reads versions " +
+              std::to_string(kOldestCheckpointVersion) + " to " + std::to_string(kCheckpointVersion));
+  version_ = version;
   std::size_t at = kHeaderBytes;
   for (;;) {
     if (bytes_.size() - at < kSectionOverhead)

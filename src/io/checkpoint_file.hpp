@@ -29,7 +29,10 @@ class CheckpointError : public std::runtime_error {
 };
 
 inline constexpr std::string_view kCheckpointMagic = "SEISMPMCHK";
-inline constexpr std::uint16_t kCheckpointVersion = 2;
+// Version 3 added Rayleigh damping (each deformable material's alpha and beta, the particles' damping
+// stress); version 2 files are still read, as undamped.
+inline constexpr std::uint16_t kCheckpointVersion = 3;
+inline constexpr std::uint16_t kOldestCheckpointVersion = 2;
 
 // CRC-32 (IEEE 802.3, the one of zlib and Python's zlib.crc32) of `size` bytes, continuing from `crc`.
 std::uint32_t crc32(const void* data, std::size_t size, std::uint32_t crc = 0);
@@ -120,7 +123,8 @@ class SectionReader {
 
 class CheckpointReader {
  public:
-  // Reads and checks the whole file: magic, version, every section's length and CRC, the END section.
+  // Reads and checks the whole file: magic, version (kOldestCheckpointVersion to kCheckpointVersion),
+  // every section's length and CRC, the END section.
   explicit CheckpointReader(const std::string& path);
   CheckpointReader(const CheckpointReader&) = delete;  // the sections point into bytes_
   CheckpointReader& operator=(const CheckpointReader&) = delete;
@@ -128,9 +132,11 @@ class CheckpointReader {
   // Throws CheckpointError when the section is missing.
   SectionReader section(std::string_view tag) const;
   const std::string& path() const { return path_; }
+  std::uint16_t version() const { return version_; }
 
  private:
   std::string path_;
+  std::uint16_t version_ = 0;
   std::string bytes_;
   std::map<std::string, std::string_view> sections_;
 };

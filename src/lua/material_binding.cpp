@@ -1,6 +1,9 @@
 // mpm.material.*: constitutive models. Soil models plug in here the same way. The materials check
 // their own parameters (ranges and how they depend on each other); the binding reads and forwards.
+#include <cmath>
+#include <optional>
 #include <sstream>
+#include <utility>
 
 #include "api_docs.hpp"
 #include "binding.hpp"
@@ -25,11 +28,27 @@ const Key kDilation = arg::number("dilation", "degrees", "dilation angle psi (0:
                           .in_text("in [0, friction]")
                           .def(0);
 
+// Rayleigh damping, either form: a ratio at two frequencies, or the coefficients themselves.
+const Key kRayleighKeys[] = {
+    arg::number("ratio", "", "critical-damping ratio at both frequencies (0.02-0.05 for soil)")
+        .in(kRayleighRatioRange)
+        .shown("with frequencies"),
+    arg::custom("frequencies", "{f1, f2} with 0 < f1 < f2", "Hz",
+                "where the ratio holds (bracket the site's f1 = Vs / 4H and the motion's main frequency); "
+                "between them the damping is lower, outside higher")
+        .shown("with ratio"),
+    arg::number("alpha", "1/s", "mass-proportional coefficient (instead of ratio)").in(kRayleighAlphaRange).def(0),
+    arg::number("beta", "s", "stiffness-proportional coefficient (instead of ratio)").in(kRayleighBetaRange).def(0),
+};
+const Key kRayleigh = arg::table("rayleigh", kRayleighKeys,
+                                 "Rayleigh damping C = alpha M + beta K, xi(w) = alpha / 2w + beta w / 2: "
+                                 "{ ratio =, frequencies = {f1, f2} } or { alpha =, beta = } (none when absent)");
+
 // Shown in outputs beside the material index particles carry.
 const Key kName =
     arg::string("name", "a label for outputs: the .vtu files' material_names, m:materials()").shown("its kind");
 
-const Key kLinearElasticKeys[] = {kDensity, kYoung, kPoisson, kName};
+const Key kLinearElasticKeys[] = {kDensity, kYoung, kPoisson, kRayleigh, kName};
 const Key kSofteningKeys[] = {
     arg::number("cohesion", "Pa", "residual cohesion").in_text("in [0, cohesion]").shown("cohesion (not softened)"),
     arg::number("friction", "degrees", "residual friction angle")
@@ -48,6 +67,7 @@ const Key kMohrCoulombKeys[] = {
     kDilation,
     arg::number("tension", "Pa", "tensile strength (0: none)").in_text("in [0, c cot(phi)]").def(0),
     arg::table("softening", kSofteningKeys, "linear softening of c and phi with accumulated plastic shear strain"),
+    kRayleigh,
     kName,
 };
 const Key kDruckerPragerKeys[] = {
@@ -61,6 +81,7 @@ const Key kDruckerPragerKeys[] = {
     arg::choice("fit", "plane_strain|outer|inner", "plane_strain",
                 "how the cone fits Mohr-Coulomb: the same plane-strain limit load, or through its compression "
                 "(outer) or extension (inner) corners"),
+    kRayleigh,
     kName,
 };
 
@@ -71,6 +92,16 @@ int material_tostring(lua_State* L) {
 
 int material_kind(lua_State* L) {
   lua_pushstring(L, std::string(self<MaterialObject>(L).material->kind()).c_str());
+  return 1;
+}
+
+int material_rayleigh(lua_State* L) {
+  const Rayleigh& r = self<MaterialObject>(L).material->rayleigh();
+  lua_createtable(L, 0, 2);
+  lua_pushnumber(L, r.alpha);
+  lua_setfield(L, -2, "alpha");
+  lua_pushnumber(L, r.beta);
+  lua_setfield(L, -2, "beta");
   return 1;
 }
 
@@ -92,8 +123,55 @@ void read_strength(lua_State* L, const char* kind, const Args& a, StrengthParame
   check_plausible_friction(L, kind, "dilation", s.dilation);
 }
 
-// The material object, its summary led by its name when it has one.
-int push_material(lua_State* L, const Args& a, std::shared_ptr<const Material> material, const std::string& summary) {
+// {f1, f2} of the rayleigh table: two numbers, 0 < f1 < f2.
+std::pair<double, double> read_frequencies(const Args& r) {
+  lua_State* L = r.state();
+  const std::string what = "key 'rayleigh': key 'frequencies' must be {f1, f2} with 0 < f1 < f2 (Hz)";
+  const int t = r.push("frequencies");
+  double f[2] = {0.0, 0.0};
+  bool ok = t == LUA_TTABLE && lua_rawlen(L, -1) == 2;
+  for (int k = 0; ok && k < 2; ++k) {
+    ok = lua_rawgeti(L, -1, k + 1) == LUA_TNUMBER;
+    f[k] = ok ? lua_tonumber(L, -1) : 0.0;
+    lua_pop(L, 1);
+  }
+  const std::string got = ok ? "{" + number_text(f[0]) + ", " + number_text(f[1]) + "}" : type_name(L, -1);
+  lua_pop(L, 1);
+  if (!ok || !(f[0] > 0.0 && f[0] < f[1] && std::isfinite(f[1]))) throw Error(what + ", got " + got);
+  return {f[0], f[1]};
+}
+
+// The rayleigh key, when given: the coefficients, and how they were given for the summary.
+std::optional<std::pair<Rayleigh, std::string>> read_rayleigh(const Args& a) {
+  if (!a.has("rayleigh")) return std::nullopt;
+  const Args r = a.table("rayleigh");
+  const bool by_ratio = r.has("ratio") || r.has("frequencies");
+  const bool by_coefficients = r.has("alpha") || r.has("beta");
+  if (by_ratio == by_coefficients)
+    throw Error("key 'rayleigh': give either ratio and frequencies = {f1, f2}, or alpha and/or beta");
+  std::ostringstream os;
+  try {
+    if (by_coefficients) return std::pair{Rayleigh::coefficients(r.number("alpha"), r.number("beta")), std::string()};
+    if (!r.has("ratio")) throw Error("key 'rayleigh': missing key 'ratio' (with frequencies)");
+    if (!r.has("frequencies")) throw Error("key 'rayleigh': missing key 'frequencies' = {f1, f2} (with ratio)");
+    const auto [f1, f2] = read_frequencies(r);
+    const double ratio = r.number("ratio");
+    os << " (ratio " << ratio << " at " << f1 << " and " << f2 << " Hz)";
+    return std::pair{Rayleigh::from_ratio(ratio, f1, f2), os.str()};
+  } catch (const ParameterError& e) {
+    throw Error("key 'rayleigh': key " + std::string(e.what()));
+  }
+}
+
+// The material object, its summary led by its name when it has one and ended by its damping.
+int push_material(lua_State* L, const Args& a, std::shared_ptr<Material> material, std::string summary) {
+  if (const auto rayleigh = read_rayleigh(a)) {
+    material->set_rayleigh(rayleigh->first);
+    std::ostringstream os;
+    os << ", Rayleigh alpha " << rayleigh->first.alpha << " 1/s, beta " << rayleigh->first.beta << " s"
+       << rayleigh->second;
+    summary += os.str();
+  }
   const std::string name = a.string("name", "");
   push_object(L, MaterialObject{std::move(material), name.empty() ? summary : "'" + name + "' " + summary, name});
   return 1;
@@ -166,6 +244,12 @@ const Function kMaterial[] = {
      {},
      "The constitutive model's name.",
      "print(rock:kind())"},
+    {"material:rayleigh",
+     &guarded<material_rayleigh>,
+     "mat:rayleigh()",
+     {},
+     "Its Rayleigh damping coefficients { alpha = (1/s), beta = (s) }; both 0 without damping.",
+     "local r = soil:rayleigh(); print(r.alpha, r.beta)"},
 };
 
 }  // namespace

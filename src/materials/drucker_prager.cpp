@@ -76,7 +76,7 @@ std::shared_ptr<const Material> DruckerPrager::with_reduced_strength(double srf)
     const auto c = drucker_prager_constants(r);
     r.tension = std::min(r.tension, c.k / (3.0 * c.alpha));
   }
-  return std::make_shared<DruckerPrager>(r);
+  return with_my_damping(std::make_shared<DruckerPrager>(r));  // damping is not strength: kept
 }
 
 double DruckerPrager::yield_function(const Sym& s) const {

@@ -95,7 +95,7 @@ std::shared_ptr<const Material> MohrCoulomb::with_reduced_strength(double srf) c
   // tension / srf <= (c / srf) / tan(phi_r) = c cot(phi): the apex does not move; the clamp only
   // absorbs round-off.
   if (r.friction > 0.0) r.tension = std::min(r.tension, r.cohesion / std::tan(r.friction * kDeg));
-  return std::make_shared<MohrCoulomb>(r);
+  return with_my_damping(std::make_shared<MohrCoulomb>(r));  // damping is not strength: kept
 }
 
 MohrCoulomb::MohrCoulomb(const MohrCoulombParameters& p) : Material(p.density), p_(p), elastic_{p.young, p.poisson} {

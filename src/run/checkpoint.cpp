@@ -149,45 +149,60 @@ void put_material(SectionWriter& w, const Material& m) {
     w.u8(static_cast<std::uint8_t>(p.fit));
   } else if (dynamic_cast<const RigidMaterial*>(&m)) {
     w.f64(m.density());
+    return;  // never damped
   } else {
     throw CheckpointError("checkpoint: a material of kind '" + std::string(m.kind()) +
                           "' cannot be saved (the format knows linear_elastic, mohr_coulomb, drucker_prager, rigid)");
   }
+  w.f64(m.rayleigh().alpha);
+  w.f64(m.rayleigh().beta);
 }
 
-std::shared_ptr<const Material> get_material(SectionReader& r) {
+// A deformable material of `kind`, from its parameters.
+std::shared_ptr<Material> get_deformable(SectionReader& r, const std::string& kind) {
+  if (kind == "linear_elastic") {
+    const double density = r.f64(), young = r.f64(), poisson = r.f64();
+    return std::make_shared<LinearElastic>(density, young, poisson);
+  }
+  if (kind == "mohr_coulomb") {
+    MohrCoulombParameters p;
+    for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
+      *v = r.f64();
+    p.softening = r.boolean();
+    for (double* v : {&p.residual_cohesion, &p.residual_friction, &p.softening_strain}) *v = r.f64();
+    return std::make_shared<MohrCoulomb>(p);
+  }
+  if (kind == "drucker_prager") {
+    DruckerPragerParameters p;
+    for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
+      *v = r.f64();
+    const std::uint8_t fit = r.u8();
+    if (fit > static_cast<std::uint8_t>(DruckerPragerFit::Inner)) r.fail("an unknown Drucker-Prager fit");
+    p.fit = static_cast<DruckerPragerFit>(fit);
+    return std::make_shared<DruckerPrager>(p);
+  }
+  r.fail("a material of unknown kind '" + kind + "'");
+}
+
+// A material: a rigid one's density, or a deformable one's parameters and (from version 3) its Rayleigh
+// damping.
+std::shared_ptr<const Material> get_material(SectionReader& r, std::uint16_t version) {
   const std::string kind = r.text();
   try {
-    if (kind == "linear_elastic") {
-      const double density = r.f64(), young = r.f64(), poisson = r.f64();
-      return std::make_shared<LinearElastic>(density, young, poisson);
-    }
-    if (kind == "mohr_coulomb") {
-      MohrCoulombParameters p;
-      for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
-        *v = r.f64();
-      p.softening = r.boolean();
-      for (double* v : {&p.residual_cohesion, &p.residual_friction, &p.softening_strain}) *v = r.f64();
-      return std::make_shared<MohrCoulomb>(p);
-    }
-    if (kind == "drucker_prager") {
-      DruckerPragerParameters p;
-      for (double* v : {&p.density, &p.young, &p.poisson, &p.cohesion, &p.friction, &p.dilation, &p.tension})
-        *v = r.f64();
-      const std::uint8_t fit = r.u8();
-      if (fit > static_cast<std::uint8_t>(DruckerPragerFit::Inner)) r.fail("an unknown Drucker-Prager fit");
-      p.fit = static_cast<DruckerPragerFit>(fit);
-      return std::make_shared<DruckerPrager>(p);
-    }
     if (kind == "rigid") {
       const double density = r.f64();
       if (!(density > 0.0 && std::isfinite(density))) r.fail("a rigid material's density is not > 0");
       return std::make_shared<RigidMaterial>(density);
     }
+    std::shared_ptr<Material> m = get_deformable(r, kind);
+    if (version >= 3) {
+      const double alpha = r.f64(), beta = r.f64();
+      m->set_rayleigh(Rayleigh::coefficients(alpha, beta));
+    }
+    return m;
   } catch (const InputError& e) {
     r.fail("material '" + kind + "': " + e.what());
   }
-  r.fail("a material of unknown kind '" + kind + "'");
 }
 
 }  // namespace
@@ -264,9 +279,9 @@ class CheckpointAccess {
     if (!m.bodies_.empty() || m.material_count() || sim.output_ || !sim.probes_.empty())
       throw std::logic_error("restore_checkpoint: the simulation must be new");
     try {
-      read_materials(file.section(kMaterials), m);
+      read_materials(file.section(kMaterials), m, file.version());
       read_bodies(file.section(kBodies), m);
-      read_particles(file.section(kParticles), m);
+      read_particles(file.section(kParticles), m, file.version());
       read_grid(file.section(kGrid), m.grid_);
       read_contact(file.section(kContact), m, histories);
       read_clock(file.section(kClock), m);
@@ -471,11 +486,11 @@ class CheckpointAccess {
 
   // --- reading, in the same order
 
-  static void read_materials(SectionReader r, Model<Dim>& m) {
+  static void read_materials(SectionReader r, Model<Dim>& m, std::uint16_t version) {
     const std::size_t n = r.count(5);
     for (std::size_t k = 0; k < n; ++k) {
       const std::string name = r.text();
-      m.add_material(get_material(r), name);
+      m.add_material(get_material(r, version), name);
     }
     r.finish();
   }
@@ -497,11 +512,16 @@ class CheckpointAccess {
     r.finish();
   }
 
-  static void read_particles(SectionReader r, Model<Dim>& m) {
+  static void read_particles(SectionReader r, Model<Dim>& m, std::uint16_t version) {
     Particles<Dim>& p = m.particles_;
     const std::size_t n = r.count(1);
     p.for_each_member([&](auto& member) {
       using T = typename std::decay_t<decltype(member)>::value_type;
+      if constexpr (std::is_same_v<T, Sym>)
+        if (&member == &p.damping_stress && version < 3) {  // not in version 2: undamped
+          member.assign(n, Sym::Zero());
+          return;
+        }
       member = get_vector<T>(r, "a particle field");
       if (member.size() != n)
         r.fail("a particle field has " + std::to_string(member.size()) + " values, not " + std::to_string(n));

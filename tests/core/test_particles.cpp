@@ -17,7 +17,7 @@ TEST_CASE("for_each_member visits every member of Particles", "[core][particles]
     ++members;
     bytes += sizeof(member);
   });
-  CHECK(members == 15);
+  CHECK(members == 16);
   CHECK(bytes == sizeof(Particles<2>));
   CHECK(sizeof(Particles<3>) == sizeof(Particles<2>));
 }
@@ -41,6 +41,7 @@ TEST_CASE("add appends a particle at rest and stress-free", "[core][particles]")
   CHECK(p.v[1] == Vec<2>::Zero());
   CHECK(p.normal[1] == Vec<2>::Zero());
   CHECK(p.stress[1] == Sym::Zero());
+  CHECK(p.damping_stress[1] == Sym::Zero());
   CHECK(p.strain[1] == Sym::Zero());
   CHECK(p.plastic_strain[1] == 0.0);
   CHECK(p.yield[1] == 0);
@@ -54,6 +55,7 @@ TEST_CASE("permute moves every member of a particle together", "[core][particles
     p.v[k] = Vec<3>(0, 0, k);
     p.normal[k] = Vec<3>(k, k, k);
     p.stress[k] = Sym::Constant(-k);
+    p.damping_stress[k] = Sym::Constant(2.0 * k);
     p.strain[k] = Sym::Constant(0.1 * k);
     p.plastic_strain[k] = 0.5 * k;
     p.yield[k] = static_cast<std::uint8_t>(k % 2);
@@ -72,6 +74,7 @@ TEST_CASE("permute moves every member of a particle together", "[core][particles
     CHECK(p.body[k] == o);
     CHECK(p.material[k] == 2 * o);
     CHECK(p.stress[k][5] == -o);
+    CHECK(p.damping_stress[k][3] == 2.0 * o);
     CHECK(p.strain[k][4] == 0.1 * o);
     CHECK(p.plastic_strain[k] == 0.5 * o);
     CHECK(p.yield[k] == o % 2);

@@ -107,7 +107,9 @@ TEST_CASE("checkpoint file: damaged files are named errors", "[io][checkpoint][r
   SECTION("another format version") {
     std::string bad = good;
     bad[10] = 99;
-    CHECK_THAT(error_of(bad), Catch::Contains("format version 99") && Catch::Contains("reads version 2"));
+    CHECK_THAT(error_of(bad), Catch::Contains("format version 99") && Catch::Contains("reads versions 2 to 3"));
+    bad[10] = 1;  // before APIC
+    CHECK_THAT(error_of(bad), Catch::Contains("format version 1"));
   }
   SECTION("a changed byte: CRC mismatch") {
     std::string bad = good;

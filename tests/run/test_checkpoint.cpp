@@ -1,7 +1,7 @@
 // Checkpoints: a run restored from one ends bit for bit where the uninterrupted run ends (contact, a
-// rigid body following a record, Mohr-Coulomb plasticity, probes, outputs, a gravity phase interrupted
-// mid-way), function histories must be given again, and the output directory's lists match the restored
-// state.
+// rigid body following a record, Mohr-Coulomb plasticity, Rayleigh damping, probes, outputs, a gravity
+// phase interrupted mid-way), function histories must be given again, the output directory's lists match
+// the restored state, and a version 2 file (before Rayleigh damping) is still read.
 #include <catch2/catch.hpp>
 
 #include <cstring>
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "io/checkpoint_file.hpp"
 #include "materials/mohr_coulomb.hpp"
 #include "run/checkpoint.hpp"
 #include "run/simulation.hpp"
@@ -36,7 +37,7 @@ std::string read_text(const std::string& file) {
 // A Mohr-Coulomb slope on a rigid base shaken by a tabulated record, in frictional contact, with a fixity,
 // two probes and an output directory. `function_base`: the base follows a function history instead.
 std::unique_ptr<Simulation<2>> shaken_slope(const std::string& dir, bool function_base = false,
-                                            Transfer transfer = Transfer::Flip) {
+                                            Transfer transfer = Transfer::Flip, const Rayleigh& damping = {}) {
   ModelSettings<2> s;
   s.transfer = transfer;
   s.lower = Vec<2>(-0.2, -0.1);
@@ -51,7 +52,9 @@ std::unique_ptr<Simulation<2>> shaken_slope(const std::string& dir, bool functio
   p.poisson = 0.3;
   p.cohesion = 3000;
   p.friction = 30;
-  const int soil = m.add_material(std::make_shared<MohrCoulomb>(p), "soil");
+  auto material = std::make_shared<MohrCoulomb>(p);
+  material->set_rayleigh(damping);
+  const int soil = m.add_material(material, "soil");
   const int body = m.add_body("soil", 2);
   m.fill(body, soil, Vec<2>(0, 0), Vec<2>(1, 0.45), [](const Vec<2>& x) { return x[1] < 0.45 - 0.5 * x[0]; });
   std::array<std::shared_ptr<const History>, 2> v;
@@ -164,6 +167,121 @@ TEST_CASE("checkpoint: a dynamic phase restored mid-way ends bit for bit as the 
     c.run(0.05);
     require_same_state(*a, c);
   }
+}
+
+namespace {
+
+// The same checkpoint as format version 2 wrote it: no Rayleigh coefficients after each deformable
+// material, no damping stress among the particle members (the 9th). Valid only for an undamped model.
+std::string as_version_2(const std::string& v3) {
+  const auto take = [](const std::string& b, std::size_t& at, std::size_t n) {
+    at += n;
+    return b.substr(at - n, n);
+  };
+  const auto u32 = [](const std::string& b, std::size_t at) {
+    std::uint32_t v;
+    std::memcpy(&v, b.data() + at, 4);
+    return static_cast<std::size_t>(v);
+  };
+  const auto u64 = [](const std::string& b, std::size_t at) {
+    std::uint64_t v;
+    std::memcpy(&v, b.data() + at, 8);
+    return static_cast<std::size_t>(v);
+  };
+  std::string out = v3.substr(0, 16);
+  out[10] = 2;
+  for (std::size_t at = 16; at < v3.size();) {
+    const std::string tag = v3.substr(at, 8);
+    std::string payload = v3.substr(at + 16, u64(v3, at + 8));
+    at += 16 + payload.size() + 4;
+    std::string kept;
+    std::size_t p = 0;
+    if (tag.rfind("MATERIAL", 0) == 0) {
+      kept += take(payload, p, 8);
+      for (std::size_t k = 0, n = u64(payload, 0); k < n; ++k) {
+        kept += take(payload, p, 4 + u32(payload, p));  // name
+        const std::string kind = payload.substr(p + 4, u32(payload, p));
+        kept += take(payload, p, 4 + kind.size());
+        const std::size_t bytes = kind == "linear_elastic" ? 24
+                                  : kind == "mohr_coulomb" ? 81
+                                  : kind == "rigid"        ? 8
+                                                           : 57;
+        kept += take(payload, p, bytes);
+        if (kind != "rigid") take(payload, p, 16);  // alpha, beta
+      }
+      payload = kept;
+    } else if (tag.rfind("PARTICLE", 0) == 0) {
+      kept += take(payload, p, 8);
+      for (int member = 0; p < payload.size(); ++member) {
+        const std::string v = take(payload, p, 12 + u64(payload, p) * u32(payload, p + 8));
+        if (member != 8) kept += v;  // damping_stress
+      }
+      payload = kept;
+    }
+    std::string section = tag;
+    const std::uint64_t length = payload.size();
+    section.append(reinterpret_cast<const char*>(&length), 8);
+    section += payload;
+    const std::uint32_t crc = crc32(section.data(), section.size());
+    section.append(reinterpret_cast<const char*>(&crc), 4);
+    out += section;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("checkpoint: a Rayleigh-damped run restored mid-way ends bit for bit, its damping kept",
+          "[run][checkpoint][rayleigh]") {
+  const std::string dir_a = temp_dir("seismpm_ckpt_ra"), dir_b = temp_dir("seismpm_ckpt_rb");
+  const std::string file = dir_b + "/mid.chk";
+  const Rayleigh damping = Rayleigh::from_ratio(0.02, 2.0, 20.0);
+  auto a = shaken_slope(dir_a, false, Transfer::Flip, damping);
+  a->dynamic_phase(0.08, 0.0);
+  {
+    auto b = shaken_slope(dir_b, false, Transfer::Flip, damping);
+    bool written = false;
+    b->set_periodic_checkpoint(file, 0.0, [&] {
+      if (written || b->model().phase_time() < 0.03) return false;
+      return written = true;
+    });
+    b->dynamic_phase(0.08, 0.0);
+    REQUIRE(written);
+  }
+  const CheckpointReader checkpoint(file);
+  CHECK(checkpoint.version() == kCheckpointVersion);
+  Simulation<2> c(checkpoint_settings<2>(checkpoint));
+  restore_checkpoint(checkpoint, c);
+  const Rayleigh& restored = c.model().material(0).rayleigh();
+  CHECK(restored.alpha == damping.alpha);
+  CHECK(restored.beta == damping.beta);
+  double largest = 0.0;  // the viscous stress is state the restart must bring back
+  for (const Sym& s : c.model().particles().damping_stress) largest = std::max(largest, s.cwiseAbs().maxCoeff());
+  CHECK(largest > 0.0);
+  REQUIRE(c.interrupted_run() == RunKind::Dynamic);
+  c.resume();
+  require_same_state(*a, c);
+}
+
+TEST_CASE("checkpoint: a version 2 file is read as undamped", "[run][checkpoint][rayleigh]") {
+  const std::string dir_a = temp_dir("seismpm_ckpt_2a"), dir_b = temp_dir("seismpm_ckpt_2b");
+  auto a = shaken_slope(dir_a);
+  a->dynamic_phase(0.03, 0.0);
+  {
+    auto b = shaken_slope(dir_b);
+    b->dynamic_phase(0.03, 0.0);
+    write_checkpoint(*b, dir_b + "/v3.chk");
+  }
+  std::ofstream(dir_b + "/v2.chk", std::ios::binary) << as_version_2(read_text(dir_b + "/v3.chk"));
+  const CheckpointReader v2(dir_b + "/v2.chk");
+  CHECK(v2.version() == 2);
+  Simulation<2> c(checkpoint_settings<2>(v2));
+  restore_checkpoint(v2, c);
+  CHECK_FALSE(c.model().material(0).rayleigh().any());
+  require_same_state(*a, c);
+  a->dynamic_phase(0.03, 0.0);
+  c.dynamic_phase(0.03, 0.0);
+  require_same_state(*a, c);
 }
 
 TEST_CASE("checkpoint: a gravity phase interrupted mid-way goes on to the same equilibrium and reset",
