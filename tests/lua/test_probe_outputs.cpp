@@ -97,11 +97,14 @@ TEST_CASE("probes.csv: each row's phase and phase_time = time - the phase's star
   }
   CHECK(count["run"] == 6);  // 0, 0.01, ..., 0.05
   CHECK(count["gravity"] > 2);
-  CHECK(count["dynamic"] == 20);  // 0.01 ... 0.2 s into the shaking
+  // Samples at multiples of 0.01 s of model time and at the run's end: 20 or 21 in 0.2 s of shaking.
+  CHECK(count["dynamic"] >= 20);
+  CHECK(count["dynamic"] <= 21);
   // The gravity phase's end is its own row (sampled before the displacements' reset); the last row is
   // 0.2 s into the dynamic phase.
-  const auto at_gravity_end = std::find_if(
-      rows.begin() + 1, rows.end(), [&](const auto& row) { return std::abs(std::stod(row[0]) - gravity_end) < 1e-12; });
+  const auto at_gravity_end = std::find_if(rows.begin() + 1, rows.end(), [&](const auto& row) {
+    return std::abs(std::stod(row[0]) - gravity_end) < 1e-9;
+  });  // 10 digits
   REQUIRE(at_gravity_end != rows.end());
   CHECK((*at_gravity_end)[1] == "gravity");
   CHECK(rows.back()[1] == "dynamic");
