@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "console.hpp"
@@ -110,7 +111,9 @@ int parse_command_line(int argc, char** argv, CommandLine& cl) {
       "                            directory (read) and the output directory (write)\n"
       "  seismpm -i FILE.lua       run, then stay in the console\n"
       "  seismpm -e 'lua code'     run a chunk\n"
-      "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy)",
+      "  seismpm plot DIR [q ...]  PNG plots of DIR/probes.csv (default quantities: ux uy;\n"
+      "                            --phase current|gravity|dynamic keeps one phase's rows,\n"
+      "                            --x phase_time|time chooses the time axis)",
       "seismpm"};
   app.prefix_command();  // everything after FILE.lua belongs to the script
   app.add_flag("-i,--interactive", cl.interactive, "Enter the console after running FILE and chunks");
@@ -172,10 +175,39 @@ int plot_command(const std::vector<std::string>& args) {
     std::fprintf(stderr, "seismpm plot: give the output directory, e.g. seismpm plot out/shaking_table\n");
     return 2;
   }
-  std::vector<std::string> quantities(args.begin() + 1, args.end());
+  // Words are quantities, but --x AXIS and --phase NAME (also --x=AXIS, --phase=NAME).
+  std::vector<std::string> quantities;
+  seismpm::ProbePlotOptions options;
+  for (std::size_t k = 1; k < args.size(); ++k) {
+    const std::string& w = args[k];
+    std::string* option = nullptr;
+    std::string value;
+    for (auto [flag, target] : {std::pair{"--x", &options.x}, std::pair{"--phase", &options.phase}}) {
+      const std::string f = flag;
+      if (w == f) {
+        if (k + 1 >= args.size()) {
+          std::fprintf(stderr, "seismpm plot: %s needs a value\n", flag);
+          return 2;
+        }
+        option = target, value = args[++k];
+      } else if (w.rfind(f + "=", 0) == 0) {
+        option = target, value = w.substr(f.size() + 1);
+      }
+    }
+    if (option) {
+      *option = value;
+    } else if (w.rfind("--", 0) == 0) {
+      std::fprintf(stderr, "seismpm plot: unknown option %s (options: --x %s, --phase %s)\n", w.c_str(),
+                   seismpm::kProbePlotX, seismpm::kProbePlotPhases);
+      return 2;
+    } else {
+      quantities.push_back(w);
+    }
+  }
   if (quantities.empty()) quantities = {"ux", "uy"};
   try {
-    for (const auto& png : seismpm::plot_probes(args[0], quantities)) std::printf("wrote %s\n", png.c_str());
+    for (const auto& png : seismpm::plot_probes(args[0], quantities, {}, options))
+      std::printf("wrote %s\n", png.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seismpm plot: %s\n", e.what());
     return 1;

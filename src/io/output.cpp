@@ -67,9 +67,12 @@ std::string pvd_text(const std::vector<std::pair<double, std::string>>& files) {
 template <int Dim>
 std::string probes_csv_header(const std::vector<std::shared_ptr<Probe<Dim>>>& probes) {
   const auto fields = particle_fields(Dim);
-  std::string header = "time (s)";
-  for (const auto& p : probes)
+  std::string header = "time (s),phase,phase_time (s)";
+  for (const auto& p : probes) {
     for (Field f : fields) header += ',' + csv_field(std::string(p->name()) + '.' + std::string(field_name(f)));
+    if (p->relative_to().active())
+      for (const auto& r : relative_field_names(Dim)) header += ',' + csv_field(std::string(p->name()) + '.' + r);
+  }
   return header + '\n';
 }
 
@@ -88,15 +91,25 @@ std::string probes_csv_rows(const std::vector<std::shared_ptr<Probe<Dim>>>& prob
       row[k] = s;
     }
   if (rows.empty()) return {};
-  std::vector<std::vector<double>> series;  // probe-major, field-minor
-  for (const auto& p : probes)
-    for (Field f : fields) series.push_back(p->series(f));
+  std::vector<std::vector<std::vector<double>>> series(probes.size());  // per probe, its columns
+  for (std::size_t k = 0; k < probes.size(); ++k) {
+    for (Field f : fields) series[k].push_back(probes[k]->series(f));
+    if (probes[k]->relative_to().active())
+      for (int d = 0; d < Dim; ++d) series[k].push_back(probes[k]->relative_series(d));
+  }
   for (const auto& [t, row] : rows) {
     os << t;
+    // The phase and its time from the first probe sampled then (all probes sampled at one time share them).
+    std::size_t first_probe = 0;
+    while (first_probe < row.size() && row[first_probe] == std::string::npos) ++first_probe;
+    const Probe<Dim>& sampled = *probes[first_probe];
+    const double phase_time = sampled.phase_time(row[first_probe]);
+    os << ',' << csv_field(sampled.phase(row[first_probe])) << ',';
+    if (phase_time == phase_time) os << phase_time;  // empty when not known
     for (std::size_t k = 0; k < probes.size(); ++k)
-      for (std::size_t f = 0; f < fields.size(); ++f) {
+      for (const auto& column : series[k]) {
         os << ',';
-        if (k < row.size() && row[k] != std::string::npos) os << series[k * fields.size() + f][row[k]];
+        if (k < row.size() && row[k] != std::string::npos) os << column[row[k]];
       }
     os << '\n';
   }

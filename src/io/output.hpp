@@ -90,7 +90,9 @@ VtuMeta particle_meta(const Model<Dim>& model, const std::string& phase);
 
 // The PVD collection text for (time, file) pairs.
 std::string pvd_text(const std::vector<std::pair<double, std::string>>& files);
-// probes.csv: "time (s)" and "<probe>.<field>" columns (quoted as CSV needs); a row per sampled time.
+// probes.csv: "time (s)", "phase" (run, gravity, dynamic), "phase_time (s)" (the time since that phase
+// began), then "<probe>.<field>" columns (quoted as CSV needs), each probe's fields followed, for a
+// probe with a reference, by "<probe>.ux_rel" ... ; a row per sampled time.
 template <int Dim>
 std::string probes_csv_text(const std::vector<std::shared_ptr<Probe<Dim>>>& probes);
 // Its header line; and the rows of the samples from index first[k] on of each probe k, merged by time

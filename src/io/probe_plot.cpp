@@ -1,7 +1,9 @@
 #include "probe_plot.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "atomic_file.hpp"
@@ -27,6 +29,9 @@ std::string describe(const std::string& q) {
   if (q == "q") return "Deviatoric stress";
   if (q == "shear_strain") return "Shear strain";
   if (q == "plastic_strain") return "Plastic strain";
+  if (q == "ux_rel") return "Horizontal displacement relative to the reference";
+  if (q == "uy_rel") return "Vertical displacement relative to the reference";
+  if (q == "uz_rel") return "Displacement z relative to the reference";
   return "";
 }
 
@@ -103,20 +108,85 @@ std::vector<std::pair<std::size_t, std::string>> probe_columns(const std::string
   return out;
 }
 
-std::string probe_plot_body(const std::string& dir, const std::string& q,
-                            const std::vector<ProbeReference>& references) {
+namespace {
+
+bool one_of(const std::string& value, const char* choices) {
+  std::istringstream in(choices);
+  for (std::string c; std::getline(in, c, '|');)
+    if (c == value) return true;
+  return false;
+}
+
+// The phase kept by the options, with its start; none when every row is kept.
+std::optional<PhaseStart> kept_phase(const std::string& dir, const std::vector<PhaseStart>& phases,
+                                     const ProbePlotOptions& o) {
+  const std::string phase = o.phase.empty() && o.x == "phase_time" ? "current" : o.phase;
+  if (phase.empty()) return std::nullopt;
+  std::string names;
+  for (const auto& p : phases) names += (names.empty() ? "" : ", ") + p.phase;
+  if (phases.empty())
+    throw InputError("phase '" + phase + "': " + dir + "/phases.csv lists no phase (written with the outputs)");
+  if (phase == "current") return phases.back();
+  for (auto it = phases.rbegin(); it != phases.rend(); ++it)
+    if (it->phase == phase) return *it;
+  throw InputError("phase '" + phase + "': the run had no such phase (" + dir + "/phases.csv: " + names + ")");
+}
+
+// The columns phase and phase_time (s) as gnuplot numbers them; throws InputError for a probes.csv
+// without them (written before they were added).
+std::pair<std::size_t, std::size_t> phase_columns(const std::string& csv) {
+  TextLines in(csv);
+  std::string header;
+  in.next(header);
+  const auto columns = split_csv_fields(header);
+  if (columns.size() < 3 || columns[1] != "phase" || columns[2] != "phase_time (s)")
+    throw InputError(csv +
+                     ":1: no columns 'phase' and 'phase_time (s)' (a probes.csv of an older version): plot it "
+                     "with x = \"auto\" or \"time\" and no phase");
+  return {2, 3};
+}
+
+}  // namespace
+
+std::string probe_plot_body(const std::string& dir, const std::string& q, const std::vector<ProbeReference>& references,
+                            const ProbePlotOptions& options) {
   const std::string csv = dir + "/probes.csv";
+  if (!one_of(options.x, kProbePlotX))
+    throw InputError("x '" + options.x + "': the time axis is one of " + std::string(kProbePlotX));
+  if (!options.phase.empty() && !one_of(options.phase, kProbePlotPhases))
+    throw InputError("phase '" + options.phase + "': one of " + std::string(kProbePlotPhases));
   const auto curves = probe_columns(csv, q);
   if (curves.empty()) throw InputError("cannot plot '" + q + "': no probe column ends in ." + q + " in " + csv);
   const auto phases = read_phases(dir);
+  const auto kept = kept_phase(dir, phases, options);
   const double t0 = shaking_start(phases);
-  const bool shaking = t0 == t0;  // not NaN: the run had a dynamic phase
-  std::ostringstream time;        // the x of a row: its model time, less the shaking's start
+  // The axis: a phase's own time, the model time, or the shaking's time (auto, all rows).
+  const bool own_time = options.x == "phase_time" || (options.x == "auto" && kept);
+  const bool shaking = options.x == "auto" && !kept && t0 == t0;  // not NaN: the run had a dynamic phase
+  std::ostringstream time;  // the x of a row: its model time (less the shaking's start), or its phase time
   time.precision(15);
-  if (shaking)
+  if (kept || own_time) {
+    const auto [phase_column, phase_time_column] = phase_columns(csv);
+    std::ostringstream x;
+    x.precision(15);
+    if (own_time)
+      x << '$' << phase_time_column;
+    else
+      x << '$' << 1;
+    if (kept) {
+      // A row of the phase kept: its phase's name, and its phase's start (time - phase_time) that of
+      // the last phase of the name (an earlier phase of the same name began earlier).
+      const double s = kept->start, tol = 1e-6 * std::max(1.0, std::abs(s));
+      time << "((strcol(" << phase_column << ") eq " << gnuplot_quote(kept->phase) << " && abs($1 - $"
+           << phase_time_column << " - " << s << ") <= " << tol << ") ? " << x.str() << " : NaN)";
+    } else {
+      time << x.str();
+    }
+  } else if (shaking) {
     time << "($1 - " << t0 << ")";
-  else
+  } else {
     time << "1";
+  }
 
   std::ostringstream plot;
   for (const auto& [column, probe] : curves)
@@ -130,25 +200,33 @@ std::string probe_plot_body(const std::string& dir, const std::string& q,
          << gnuplot_quote(r.title.empty() ? r.y : r.title);
   }
   const std::string what = describe(q);
+  std::string xlabel;
+  if (own_time)
+    xlabel =
+        kept->phase == "run" ? "time since the run began (s)" : "time since the " + kept->phase + " phase began (s)";
+  else if (shaking)
+    xlabel = "time since the dynamic phase began (s)" + shaded_phases(phases, t0);
+  else
+    xlabel = phases.size() > 1 || kept ? "model time (s)" : "time (s)";
   std::ostringstream body;
-  body << "set title " << gnuplot_quote((what.empty() ? q : what) + " of the control points") << "\n"
-       << "set xlabel "
-       << gnuplot_quote(shaking             ? "time since the dynamic phase began (s)" + shaded_phases(phases, t0)
-                        : phases.size() > 1 ? "model time (s)"
-                                            : "time (s)")
-       << "\nset ylabel " << gnuplot_quote((what.empty() ? "" : what + " ") + q + " (" + field_unit(q) + ")") << "\n"
-       << phase_marks(phases, shaking ? t0 : 0.0) << plot.str() << "\n";
+  body << "set title "
+       << gnuplot_quote((what.empty() ? q : what) + " of the control points" +
+                        (kept ? ", " + phase_label(kept->phase) : std::string()))
+       << "\nset xlabel " << gnuplot_quote(xlabel) << "\nset ylabel "
+       << gnuplot_quote((what.empty() ? "" : what + " ") + q + " (" + field_unit(q) + ")") << "\n"
+       << (kept ? std::string() : phase_marks(phases, shaking ? t0 : 0.0)) << plot.str() << "\n";
   return body.str();
 }
 
 std::vector<std::string> plot_probes(const std::string& dir, const std::vector<std::string>& quantities,
-                                     const std::vector<ProbeReference>& references) {
+                                     const std::vector<ProbeReference>& references, const ProbePlotOptions& options) {
   probe_columns(dir + "/probes.csv", "");                         // a probes file, before gnuplot is looked for
   for (const auto& r : references) CsvHeader(r.csv).column(r.y);  // before any picture is drawn
+  for (const auto& q : quantities) probe_plot_body(dir, q, references, options);  // every input checked first
   require_gnuplot();
   std::vector<std::string> written;
   for (const auto& q : quantities) {
-    const std::string body = probe_plot_body(dir, q, references);
+    const std::string body = probe_plot_body(dir, q, references, options);
     const std::string png = dir + "/probe_" + q + ".png";
     run_gnuplot(body, png);
     written.push_back(png);

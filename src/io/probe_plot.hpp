@@ -1,8 +1,9 @@
 // Time-history plots of the probes in DIR/probes.csv, drawn with gnuplot as PNG and SVG: one picture
 // per quantity (DIR/probe_<quantity>.png and .svg) with every probe's curve, axes labelled with units.
-// The time axis is the shaking's when the run had a dynamic phase ("time since the dynamic phase
-// began (s)", the phases before it at negative times, shaded and named), the model time otherwise; the
-// phases come from DIR/phases.csv. A closed form can be drawn beside the probes as a reference curve.
+// By default the time axis is the shaking's when the run had a dynamic phase ("time since the dynamic
+// phase began (s)", the phases before it at negative times, shaded and named), the model time
+// otherwise; the phases come from DIR/phases.csv. Options keep one phase's rows and choose the time
+// axis (ProbePlotOptions). A closed form can be drawn beside the probes as a reference curve.
 #pragma once
 
 #include <string>
@@ -19,15 +20,32 @@ struct ProbeReference {
   std::string title;  // its key entry; empty: the column's name
 };
 
+// The time axis and the rows of the probe plots.
+struct ProbePlotOptions {
+  // "auto": after a dynamic phase the time since the (first) dynamic phase began, the phases before it
+  // at negative times, shaded; the model time otherwise; with a phase kept, that phase's own time.
+  // "time": the model time. "phase_time": the time since the phase kept began (the probes.csv column
+  // phase_time (s)).
+  std::string x = "auto";
+  // The rows kept: "" all of them; "current" the last phase of the run (phases.csv); a phase name
+  // ("gravity", "dynamic", "run"): the last phase of that name. x = "phase_time" keeps the current
+  // phase unless a phase is given.
+  std::string phase;
+};
+// The x choices and the phase choices the options take (for messages and argument checks).
+inline constexpr const char* kProbePlotX = "auto|time|phase_time";
+inline constexpr const char* kProbePlotPhases = "current|run|gravity|dynamic";
+
 // Returns the PNG paths written (each with its SVG beside it). Throws OutputError (missing
 // probes.csv, no gnuplot, gnuplot failed) or InputError (a quantity no probe has, a reference column
-// its file lacks).
+// its file lacks, a phase the run did not have, a probes.csv without phase columns for a phase plot).
 std::vector<std::string> plot_probes(const std::string& dir, const std::vector<std::string>& quantities,
-                                     const std::vector<ProbeReference>& references = {});
+                                     const std::vector<ProbeReference>& references = {},
+                                     const ProbePlotOptions& options = {});
 
 // The gnuplot settings and plot command of quantity `q`'s picture (for picture_script).
 std::string probe_plot_body(const std::string& dir, const std::string& q,
-                            const std::vector<ProbeReference>& references = {});
+                            const std::vector<ProbeReference>& references = {}, const ProbePlotOptions& options = {});
 
 // The columns of a probes.csv (`csv`) holding field `q` of a probe, as gnuplot numbers them (from 1),
 // with the probe's name; its header is read as CSV (probe names may hold commas and quotes). Throws

@@ -1,4 +1,5 @@
 // Building a model: m:body, m:rigid, m:contact, m:set_friction, m:fix, m:boundary, m:probe.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -93,6 +94,11 @@ const Key kProbeKeys[] = {
                 "when a run starts")
         .in(at_least(0))
         .def(0.01),
+    arg::custom("relative_to", "a probe or a body", "",
+                "also record the displacement relative to it: ux_rel, uy_rel (another probe's particle; a body's "
+                "mass-weighted centroid, a rigid body's own displacement; like ux, since the particles were made or "
+                "the gravity phase's reset)")
+        .shown("none"),
 };
 
 // The shape under key 'shape', checked to lie in the model's domain.
@@ -306,6 +312,42 @@ int model_boundary(lua_State* L) {
   return 0;
 }
 
+// The reference under key 'relative_to' (none when absent): a probe or a body of the same model.
+ProbeRelativeTo relative_to(const Args& a, const std::shared_ptr<ModelHandle>& handle) {
+  ProbeRelativeTo r;
+  if (!a.has("relative_to")) return r;
+  lua_State* L = a.state();
+  a.push("relative_to");
+  const ProbeObject* probe = nullptr;
+  const BodyObject* body = nullptr;
+  try {
+    probe = test_object<ProbeObject>(L, -1);
+    body = probe ? nullptr : test_object<BodyObject>(L, -1);
+  } catch (const Error& e) {  // an object whose __gc ran
+    throw Error(std::string("key 'relative_to': ") + e.what());
+  }
+  if (!probe && !body) {
+    const std::string type = type_name(L, -1);
+    lua_pop(L, 1);
+    throw Error("key 'relative_to' must be a probe or a body, got " + type);
+  }
+  lua_pop(L, 1);  // the argument table keeps the userdata alive
+  if ((probe ? probe->handle : body->handle) != handle) throw Error("key 'relative_to' belongs to another model");
+  if (probe) {
+    r.kind = ProbeRelativeTo::Kind::Particle;
+    r.index = probe->probe->particle_id();
+    r.what = "probe '" + std::string(probe->probe->name()) + "'";
+  } else {
+    r.kind = ProbeRelativeTo::Kind::Body;
+    r.index = body->body;
+    r.what = "body '" + handle->model.bodies()[body->body].name + "'";
+    const auto& P = handle->model.particles();
+    if (std::find(P.body.begin(), P.body.end(), body->body) == P.body.end())
+      throw Error("key 'relative_to': body '" + handle->model.bodies()[body->body].name + "' has no particles");
+  }
+  return r;
+}
+
 int model_probe(lua_State* L) {
   const auto handle = self<ModelObject>(L).handle;
   refuse_building(L, *handle, "add a probe");
@@ -332,7 +374,7 @@ int model_probe(lua_State* L) {
                 " m from the nearest particle of body '" + handle->model.bodies()[body].name + "', at " +
                 point_text(p.x[nearest]) + "; a probe must lie within one cell (" + format_number(cell, 4) +
                 " m) of its body");
-  push_object(L, ProbeObject{handle, sim.add_probe(name, p.id[nearest], a.number("every"))});
+  push_object(L, ProbeObject{handle, sim.add_probe(name, p.id[nearest], a.number("every"), relative_to(a, handle))});
   return 1;
 }
 
@@ -379,8 +421,12 @@ const Function kBuilding[] = {
      "m:boundary{ side = \"left\", kind = \"free_field\" }"},
     {"model:probe", &guarded<model_probe>, nullptr, kProbeKeys,
      "A control point: follows a particle of the body and records all its fields every `every` seconds of "
-     "simulated time and at the end of each run.",
-     "local p1 = m:probe{ name = \"crest\", body = soil, at = {0.3, 0.5} }"},
+     "simulated time and at the end of each run, with the phase and the time since it began (probes.csv: time (s), "
+     "phase, phase_time (s), then NAME.FIELD). With relative_to (another probe, or a body), it also records its "
+     "displacement less the reference's: NAME.ux_rel, NAME.uy_rel, p:get(\"ux_rel\"), p:series(\"ux_rel\") (the "
+     "permanent displacement of a crest relative to the slope's base).",
+     "local base = m:probe{ name = \"toe\", body = soil, at = {0.1, 0.0} }; "
+     "local p1 = m:probe{ name = \"crest\", body = soil, at = {0.3, 0.5}, relative_to = base }"},
 };
 
 }  // namespace

@@ -43,8 +43,18 @@ const Key kPlotReferenceKeys[] = {
     arg::string("title", "the curve's key entry").shown("the y column's name"),
 };
 const Key kPlotKeys[] = {
-    arg::names("quantities", "particle fields of the probes, one picture each").def_text("ux|uy"),
+    arg::names("quantities",
+               "particle fields of the probes (ux_rel, uy_rel of probes with relative_to), one picture each")
+        .def_text("ux|uy"),
     arg::table("reference", kPlotReferenceKeys, "a closed form drawn with the probes, dashed and black"),
+    arg::choice("x", kProbePlotX, "auto",
+                "the time axis: auto (after a dynamic phase the shaking time, earlier phases at negative times "
+                "shaded; with a phase kept, its own time), time (the model time), phase_time (the time since the "
+                "phase kept began)"),
+    arg::choice("phase", kProbePlotPhases, nullptr,
+                "keep only the rows of this phase (its last run, if there were several); current: the phase now")
+        .with(&Key::mandatory, false)
+        .shown("every row; with x = phase_time the current phase"),
 };
 
 ModelHandle& handle_of(lua_State* L) { return *self<ModelObject>(L).handle; }
@@ -98,7 +108,11 @@ int model_plot(lua_State* L) {
   const Args a(L, 2, kPlotKeys);
   const auto quantities = *a.names("quantities");
   for (const auto& q : quantities)
-    if (!parse_field(q, 2)) throw Error("key 'quantities': '" + q + "' is not a field name (" + field_names(2) + ")");
+    if (!parse_field(q, 2) && !parse_relative_field(q, 2))
+      throw Error("key 'quantities': '" + q + "' is not a field name (" + field_names(2) + ", ux_rel, uy_rel)");
+  ProbePlotOptions options;
+  options.x = a.choice("x");
+  if (a.has("phase")) options.phase = a.choice("phase");
   std::vector<ProbeReference> references;
   if (a.has("reference")) {
     const Args r = a.table("reference");
@@ -114,7 +128,7 @@ int model_plot(lua_State* L) {
   if (!output) throw Error("no output directory yet: call m:output{ dir = ... } first");
   if (h.simulation.probes().empty()) throw Error("the model has no probes to plot (m:probe{ ... })");
   h.simulation.write_probes();
-  const auto files = plot_probes(output->settings().dir, quantities, references);
+  const auto files = plot_probes(output->settings().dir, quantities, references, options);
   lua_createtable(L, static_cast<int>(files.size()), 0);
   for (std::size_t i = 0; i < files.size(); ++i) {
     lua_pushstring(L, files[i].c_str());
@@ -144,9 +158,11 @@ const Function kOutputFunctions[] = {
      ".svg, one curve per probe, axes with units, the key outside the curves); returns the PNG file names. After a "
      "dynamic phase the time axis is the time since it began (the shaking time), with the phases before it shaded at "
      "negative "
-     "times (phases.csv); otherwise the model time. From the shell: seismpm plot DIR ux uy.",
+     "times (phases.csv); otherwise the model time. phase keeps one phase's rows (phase = \"dynamic\", or "
+     "\"current\"), x = \"phase_time\" puts them on that phase's own clock, x = \"time\" on the model time. From the "
+     "shell: seismpm plot DIR ux uy --phase dynamic --x phase_time.",
      "m:plot{ quantities = {\"ux\"}, reference = { quantity = \"ux\", file = dir .. \"/motion.csv\", x = \"t (s)\", "
-     "y = \"closed form (m)\" } }"},
+     "y = \"closed form (m)\" } }; m:plot{ quantities = {\"ux_rel\"}, phase = \"dynamic\", x = \"phase_time\" }"},
 };
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <type_traits>
 
@@ -28,6 +29,9 @@ constexpr const char* kContact = "CONTACT";
 constexpr const char* kClock = "CLOCK";
 constexpr const char* kSchedule = "SCHEDULE";
 constexpr const char* kProbes = "PROBES";
+// Each probe's phases, phase times and reference (ux_rel, ...): optional, so that a checkpoint written
+// before them still restores (its probes' earlier samples then have no phase).
+constexpr const char* kProbeExtra = "PROBEXT";
 constexpr const char* kOutput = "OUTPUT";
 constexpr const char* kRun = "RUN";
 
@@ -230,6 +234,7 @@ class CheckpointAccess {
     write_clock(file.section(kClock), m);
     write_schedule(file.section(kSchedule), sim.schedule_);
     write_probes(file.section(kProbes), sim);
+    write_probe_extra(file.section(kProbeExtra), sim);
     write_output(file.section(kOutput), sim);
     write_run(file.section(kRun), sim);
     file.write(path);
@@ -287,6 +292,7 @@ class CheckpointAccess {
       read_clock(file.section(kClock), m);
       read_schedule(file.section(kSchedule), sim.schedule_);
       read_probes(file.section(kProbes), sim);
+      if (file.has(kProbeExtra)) read_probe_extra(file.section(kProbeExtra), sim);
       read_output(file.section(kOutput), sim);
       read_run(file.section(kRun), sim);
     } catch (const CheckpointError&) {
@@ -424,6 +430,23 @@ class CheckpointAccess {
       w.i32(sim.probe_streams_[k]);
       w.array(p.times_);
       w.array(p.values_);
+    }
+  }
+
+  static void write_probe_extra(SectionWriter& w, const Simulation<Dim>& sim) {
+    w.count(sim.probes_.size());
+    for (const auto& probe : sim.probes_) {
+      const Probe<Dim>& p = *probe;
+      w.u8(static_cast<std::uint8_t>(p.relative_.kind));
+      w.i32(p.relative_.index);
+      w.text(p.relative_.what);
+      w.array(p.phase_times_);
+      w.count(p.phases_.size());
+      for (const auto& [first, phase] : p.phases_) {
+        w.count(first);
+        w.text(phase);
+      }
+      w.array(p.relative_values_);
     }
   }
 
@@ -644,8 +667,47 @@ class CheckpointAccess {
       auto probe = std::make_shared<Probe<Dim>>(sim.model_, name, id);  // checks the id
       probe->times_ = std::move(times);
       probe->values_ = std::move(values);
+      // Unknown unless the section of their phases follows (read_probe_extra).
+      probe->phase_times_.assign(probe->times_.size(), std::numeric_limits<double>::quiet_NaN());
+      probe->phases_.clear();
       sim.probes_.push_back(std::move(probe));
       sim.probe_streams_.push_back(stream);
+    }
+    r.finish();
+  }
+
+  static void read_probe_extra(SectionReader r, Simulation<Dim>& sim) {
+    if (r.count(1) != sim.probes_.size()) r.fail("not one entry per probe");
+    using Kind = ProbeRelativeTo::Kind;
+    for (const auto& probe : sim.probes_) {
+      Probe<Dim>& p = *probe;
+      const std::string who = "probe '" + p.name_ + "': ";
+      ProbeRelativeTo rel;
+      const std::uint8_t kind = r.u8();
+      if (kind > static_cast<std::uint8_t>(Kind::Body)) r.fail(who + "an unknown kind of reference");
+      rel.kind = static_cast<Kind>(kind);
+      rel.index = r.i32();
+      rel.what = r.text();
+      const int limit =
+          static_cast<int>(rel.kind == Kind::Body ? sim.model_.bodies().size() : sim.model_.particles().size());
+      if (rel.active() && (rel.index < 0 || rel.index >= limit)) r.fail(who + "a reference the model does not hold");
+      auto phase_times = r.array<double>();
+      if (phase_times.size() != p.times_.size()) r.fail(who + "not one phase time per sample");
+      std::vector<std::pair<std::size_t, std::string>> phases(r.count(12));
+      for (std::size_t k = 0; k < phases.size(); ++k) {
+        const std::int64_t at = r.i64();
+        const auto first = static_cast<std::size_t>(std::max<std::int64_t>(at, 0));
+        if (at < 0 || first >= p.times_.size() || (k > 0 && first <= phases[k - 1].first) || (k == 0 && first != 0))
+          r.fail(who + "phases out of order");
+        phases[k] = {first, r.text()};
+      }
+      auto relative = r.array<double>();
+      if (relative.size() != (rel.active() ? p.times_.size() * Dim : 0))
+        r.fail(who + "not one relative displacement per sample");
+      p.relative_ = std::move(rel);
+      p.phase_times_ = std::move(phase_times);
+      p.phases_ = std::move(phases);
+      p.relative_values_ = std::move(relative);
     }
     r.finish();
   }

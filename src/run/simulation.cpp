@@ -46,9 +46,10 @@ struct RunScope {
 // --- what runs record ---
 
 template <int Dim>
-std::shared_ptr<Probe<Dim>> Simulation<Dim>::add_probe(const std::string& name, int particle_id, double every) {
+std::shared_ptr<Probe<Dim>> Simulation<Dim>::add_probe(const std::string& name, int particle_id, double every,
+                                                       ProbeRelativeTo relative_to) {
   if (!(every >= 0.0)) throw InputError("probe '" + name + "': every must be >= 0 (s)");
-  auto probe = std::make_shared<Probe<Dim>>(model_, name, particle_id);  // its first sample
+  auto probe = std::make_shared<Probe<Dim>>(model_, name, particle_id, phase_, std::move(relative_to));  // sampled
   const auto stream = schedule_.add(EventSchedule::Spacing::Multiples, every, 0.0);
   schedule_.fired(stream, model_.time());
   probes_.push_back(probe);
@@ -100,7 +101,7 @@ void Simulation<Dim>::write_probes() {
 
 template <int Dim>
 void Simulation<Dim>::sample_probe(std::size_t k) {
-  probes_[k]->sample(model_);
+  probes_[k]->sample(model_, phase_);
   schedule_.fired(probe_streams_[k], model_.time());
 }
 

@@ -77,8 +77,10 @@ class Simulation {
 
   // --- what runs record ---
   // A control point on the particle created as number `particle_id`: sampled now, every `every` s
-  // (0: every step) and at the end of every run.
-  std::shared_ptr<Probe<Dim>> add_probe(const std::string& name, int particle_id, double every);
+  // (0: every step) and at the end of every run; with a reference, it also records its displacement
+  // relative to it (ux_rel, ...).
+  std::shared_ptr<Probe<Dim>> add_probe(const std::string& name, int particle_id, double every,
+                                        ProbeRelativeTo relative_to = {});
   const std::vector<std::shared_ptr<Probe<Dim>>>& probes() const { return probes_; }
   double probe_every(const Probe<Dim>& probe) const;
   void set_probe_every(double every);  // every probe's interval, from its last sample on

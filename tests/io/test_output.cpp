@@ -160,9 +160,12 @@ TEST_CASE("ParaView files hold the particle state and the pvd lists them with th
   // probes.csv: a header with every field of the probe, a row per 0.01 s.
   const auto csv = lines_of(dir + "/probes.csv");
   REQUIRE(csv.size() == 1 + 21);
-  CHECK(csv[0].rfind("time (s),top.id,top.body,top.material,top.mass", 0) == 0);
+  CHECK(csv[0].rfind("time (s),phase,phase_time (s),top.id,top.body,top.material,top.mass", 0) == 0);
   CHECK(csv[0].find("top.uy") != std::string::npos);
-  CHECK(std::count(csv[0].begin(), csv[0].end(), ',') == 21);  // time + 21 fields in 2D
+  CHECK(std::count(csv[0].begin(), csv[0].end(), ',') == 23);  // time, phase, phase time + 21 fields in 2D
+  // Before any phase: the phase "run", and its time is the model time.
+  CHECK(split_csv_fields(csv[5])[1] == "run");
+  CHECK(std::stod(split_csv_fields(csv[5])[2]) == Approx(std::stod(split_csv_fields(csv[5])[0])));
   // No temporary files are left behind.
   for (const auto& e : fs::directory_iterator(dir)) CHECK(e.path().extension() != ".tmp");
 }
@@ -424,8 +427,8 @@ TEST_CASE("probes.csv grows by appended rows and always equals the whole table",
   SECTION("many outputs, the probes sampled at different times") {
     for (int k = 1; k <= 58; ++k) {  // the last output at a time the second probe has no sample
       m.step();
-      probes[0]->sample(m);
-      if (k % 3 == 0) probes[1]->sample(m);
+      probes[0]->sample(m, "run");
+      if (k % 3 == 0) probes[1]->sample(m, "run");
       if (k % 2 == 0) {
         out.write(m, probes, "run");
         check_write("output " + std::to_string(k / 2));
@@ -434,7 +437,7 @@ TEST_CASE("probes.csv grows by appended rows and always equals the whole table",
     CHECK(lines_of(csv).size() == 60u);  // the header and a row per step (and t = 0)
     SECTION("a probe sampled at a row time already written fills that row in") {
       const std::string last_row = lines_of(csv).back();
-      probes[1]->sample(m);  // as at a run's end, after the output at the same time
+      probes[1]->sample(m, "run");  // as at a run's end, after the output at the same time
       out.write_probes(probes);
       check_write("row filled in");
       CHECK(lines_of(csv).size() == 60u);
@@ -445,14 +448,14 @@ TEST_CASE("probes.csv grows by appended rows and always equals the whole table",
     SECTION("a probe added between runs: the table is written whole once, then appended again") {
       probes.push_back(std::make_shared<Probe<2>>(m, "third", 10));
       m.step();
-      for (auto& p : probes) p->sample(m);
+      for (auto& p : probes) p->sample(m, "run");
       out.write(m, probes, "run");
       CHECK(read_text(csv) == probes_csv_text(probes));
       inode = inode_of(csv);
       text = read_text(csv);
       for (int k = 0; k < 10; ++k) {
         m.step();
-        for (auto& p : probes) p->sample(m);
+        for (auto& p : probes) p->sample(m, "run");
         out.write(m, probes, "run");
         check_write("after the new probe");
       }
@@ -467,12 +470,13 @@ TEST_CASE("probes.csv grows by appended rows and always equals the whole table",
         CHECK(c.columns[1][k] == Approx(ux[k]).margin(1e-12));
         CHECK(c.columns[2][k] == Approx(y[k]));
       }
-      // Column numbers from the field order, independent of any CSV parsing: time, then each probe's fields.
+      // Column numbers from the field order, independent of any CSV parsing: time, phase, phase time,
+      // then each probe's fields.
       const auto fields = particle_fields(2);
       const std::size_t ux_at = std::find(fields.begin(), fields.end(), Field::Ux) - fields.begin();
       const auto columns = probe_columns(csv, "ux");
       using Column = std::pair<std::size_t, std::string>;
-      CHECK(columns == std::vector<Column>{{2 + ux_at, "a,b"}, {2 + fields.size() + ux_at, "say \"hi\""}});
+      CHECK(columns == std::vector<Column>{{4 + ux_at, "a,b"}, {4 + fields.size() + ux_at, "say \"hi\""}});
     }
   }
 }

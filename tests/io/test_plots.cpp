@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -153,6 +154,86 @@ TEST_CASE("probe plots: time since the dynamic phase began, earlier phases shade
   SECTION("stresses in Pa, with what they are") {
     write(dir + "/probes.csv", "time (s),crest.syy\n0,0\n1,-1000\n");
     CHECK(contains(probe_plot_body(dir, "syy"), "set ylabel 'Normal stress syy (Pa)'"));
+  }
+}
+
+namespace {
+
+// The points gnuplot draws for a plot body: (x, y) of each curve's points, in order (gnuplot's `set
+// table`), so that a test sees which rows a plot keeps.
+std::vector<std::pair<double, double>> drawn_points(const std::string& dir, const std::string& body) {
+  const std::string script = dir + "/table.gp", table = dir + "/table.txt";
+  write(script, "set datafile separator ','\nset table '" + table + "'\n" + body + "unset table\n");
+  fs::remove(table);
+  REQUIRE(std::system(("gnuplot '" + script + "' 2>/dev/null").c_str()) == 0);
+  std::ifstream in(table);
+  std::vector<std::pair<double, double>> points;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream row(line);
+    double x, y;
+    if (line.empty() || line[0] == '#' || !(row >> x >> y)) continue;
+    points.emplace_back(x, y);
+  }
+  return points;
+}
+
+// probes.csv with the phase columns: a gravity phase (0 to 0.2 s) and two dynamic phases after it.
+std::string phase_probes_dir(const std::string& name) {
+  const std::string dir = fresh_dir(name);
+  write(dir + "/probes.csv",
+        "time (s),phase,phase_time (s),crest.ux,crest.uy\n"
+        "0,gravity,0,0,0\n0.1,gravity,0.1,0,-0.001\n0.2,gravity,0.2,0,-0.002\n"
+        "0.3,dynamic,0.1,0.01,-0.002\n0.4,dynamic,0.2,0.02,-0.003\n"
+        "0.45,dynamic,0.05,0.03,-0.003\n0.5,dynamic,0.1,0.04,-0.004\n");
+  write(dir + "/phases.csv", "phase,start (s)\ngravity,0\ndynamic,0.2\ndynamic,0.4\n");
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("probe plots keep one phase's rows, on its own clock or the model time", "[io][plot][phases]") {
+  const std::string dir = phase_probes_dir("probe_plot_phase");
+  using Points = std::vector<std::pair<double, double>>;
+  SECTION("the current phase on its own clock: the second dynamic phase's rows only") {
+    ProbePlotOptions o;
+    o.x = "phase_time";  // without a phase: the current one
+    const std::string body = probe_plot_body(dir, "ux", {}, o);
+    CHECK(contains(body, "set xlabel 'time since the dynamic phase began (s)'"));
+    CHECK(contains(body, "dynamic phase'"));    // in the title
+    CHECK_FALSE(contains(body, "set object"));  // no shading of other phases
+    CHECK(drawn_points(dir, body) == Points{{0.05, 0.03}, {0.1, 0.04}});
+    o.phase = "current";
+    CHECK(drawn_points(dir, probe_plot_body(dir, "ux", {}, o)) == Points{{0.05, 0.03}, {0.1, 0.04}});
+  }
+  SECTION("a phase by name: its last run; x auto is then its own clock, x time the model time") {
+    ProbePlotOptions o;
+    o.phase = "gravity";
+    CHECK(drawn_points(dir, probe_plot_body(dir, "uy", {}, o)) == Points{{0, 0}, {0.1, -0.001}, {0.2, -0.002}});
+    o.phase = "dynamic";
+    o.x = "time";
+    const std::string body = probe_plot_body(dir, "ux", {}, o);
+    CHECK(contains(body, "set xlabel 'model time (s)'"));
+    CHECK(drawn_points(dir, body) == Points{{0.45, 0.03}, {0.5, 0.04}});
+  }
+  SECTION("every row by default: the shaking's time from the first dynamic phase, as before") {
+    const auto points = drawn_points(dir, probe_plot_body(dir, "ux"));
+    REQUIRE(points.size() == 7);
+    CHECK(points.front().first == Approx(-0.2));
+    CHECK(points.back().first == Approx(0.3));
+  }
+  SECTION("a phase the run did not have, an unknown axis, a probes.csv without phase columns") {
+    ProbePlotOptions o;
+    o.phase = "run";
+    CHECK_THROWS_WITH(probe_plot_body(dir, "ux", {}, o),
+                      Contains("phase 'run': the run had no such phase") && Contains("gravity, dynamic, dynamic"));
+    o.phase = "";
+    o.x = "shaking";
+    CHECK_THROWS_WITH(probe_plot_body(dir, "ux", {}, o), Contains("x 'shaking'"));
+    write(dir + "/probes.csv", "time (s),crest.ux\n0,0\n1,1\n");
+    o.x = "phase_time";
+    CHECK_THROWS_WITH(probe_plot_body(dir, "ux", {}, o), Contains("no columns 'phase' and 'phase_time (s)'"));
+    o.x = "auto";
+    CHECK_NOTHROW(probe_plot_body(dir, "ux", {}, o));  // an older file still plots on the default axis
   }
 }
 

@@ -67,8 +67,13 @@ std::unique_ptr<Simulation<2>> shaken_slope(const std::string& dir, bool functio
   m.fill_box(base, -1, Vec<2>(-0.15, -0.05), Vec<2>(1.15, 0.0));
   m.add_contact(body, base, 0.5);
   m.grid().fix(Side::Top, FixY);
-  sim->add_probe("crest", static_cast<int>(m.particles().size() / 2), 0.01);
+  const int crest = static_cast<int>(m.particles().size() / 2);
+  sim->add_probe("crest", crest, 0.01);
   sim->add_probe("toe", 3, 0.0);
+  // Relative probes: the crest against the base's motion and against the toe (their relative
+  // displacement and the reference are state a restart must bring back).
+  sim->add_probe("crest on base", crest, 0.01, ProbeRelativeTo{ProbeRelativeTo::Kind::Body, base, "body 'base'"});
+  sim->add_probe("crest on toe", crest, 0.02, ProbeRelativeTo{ProbeRelativeTo::Kind::Particle, 3, "probe 'toe'"});
   OutputSettings out;
   out.dir = dir;
   out.every = 0.05;
@@ -96,9 +101,23 @@ void require_same_state(const Simulation<2>& a, const Simulation<2>& b) {
     if (bytes_a[k] != bytes_b[k]) differing.push_back(member);
   CAPTURE(differing);  // the members in Particles::for_each_member's order
   CHECK(differing.empty());
+  REQUIRE(a.probes().size() == b.probes().size());
   for (std::size_t k = 0; k < a.probes().size(); ++k) {
-    CHECK(a.probes()[k]->times() == b.probes()[k]->times());
-    for (Field f : particle_fields(2)) CHECK(a.probes()[k]->series(f) == b.probes()[k]->series(f));
+    const Probe<2>& pa_ = *a.probes()[k];
+    const Probe<2>& pb_ = *b.probes()[k];
+    CHECK(pa_.times() == pb_.times());
+    for (Field f : particle_fields(2)) CHECK(pa_.series(f) == pb_.series(f));
+    // The phase of every sample and its time, and the relative displacement, bit for bit.
+    REQUIRE(pa_.samples() == pb_.samples());
+    bool same_phases = true;
+    for (std::size_t s = 0; s < pa_.samples(); ++s)
+      same_phases = same_phases && pa_.phase(s) == pb_.phase(s) && pa_.phase_time(s) == pb_.phase_time(s);
+    CHECK(same_phases);
+    CHECK(pa_.relative_to().kind == pb_.relative_to().kind);
+    CHECK(pa_.relative_to().index == pb_.relative_to().index);
+    CHECK(pa_.relative_to().what == pb_.relative_to().what);
+    if (pa_.relative_to().active())
+      for (int d = 0; d < 2; ++d) CHECK(pa_.relative_series(d) == pb_.relative_series(d));
   }
 }
 
