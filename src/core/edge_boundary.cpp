@@ -41,8 +41,8 @@ EdgeBoundary<Dim>::EdgeBoundary(const Grid<Dim>& grid, const BoundarySettings<Di
   if (a >= Dim) throw InputError("boundary: the side does not exist in " + std::to_string(Dim) + "D");
   constexpr int V = Dim - 1;
   if (s.kind == BoundaryKind::FreeField && a == V)
-    throw InputError("boundary: a free_field edge is a lateral side (left|right" + std::string(Dim == 3 ? "|bottom|top" : "") +
-                     "); the base is compliant or absorbing");
+    throw InputError("boundary: a free_field edge is a lateral side (left|right" +
+                     std::string(Dim == 3 ? "|bottom|top" : "") + "); the base is compliant or absorbing");
   for (double v : {s.density, s.vs, s.vp})
     if (!(v >= 0.0 && std::isfinite(v))) throw InputError("boundary: density, vs and vp must be >= 0");
   const bool given = s.density > 0.0 || s.vs > 0.0 || s.vp > 0.0;
@@ -98,6 +98,27 @@ void EdgeBoundary<Dim>::release(Grid<Dim>& grid) {
 }
 
 template <int Dim>
+bool EdgeBoundary<Dim>::moves_frame() const {
+  if (settings_.kind != BoundaryKind::Compliant || !settings_.moving_frame) return false;
+  for (const auto& h : settings_.input)
+    if (h) return true;
+  return false;
+}
+
+template <int Dim>
+void EdgeBoundary<Dim>::before_step(Model<Dim>& model, const StepContext& c) {
+  if (!moves_frame()) return;
+  Vec<Dim> a = Vec<Dim>::Zero();
+  if (!holding_)
+    for (int d = 0; d < Dim; ++d) {
+      const double v = settings_.input[d] ? settings_.input[d]->at(c.phase_time + c.dt) : 0.0;
+      a[d] = (v - frame_velocity_[d]) / c.dt;  // from the frame's own velocity: it starts at rest
+      frame_velocity_[d] = v;
+    }
+  model.set_frame_acceleration(a);
+}
+
+template <int Dim>
 ColumnBase<Dim> EdgeBoundary<Dim>::column_base(const Model<Dim>& model) const {
   ColumnBase<Dim> base;
   if (column_base_) {
@@ -110,7 +131,7 @@ ColumnBase<Dim> EdgeBoundary<Dim>::column_base(const Model<Dim>& model) const {
       base.rho_vs = column_base_->rho_vs_.front();
       base.rho_vp = column_base_->rho_vp_.front();
     }
-    if (b.kind == BoundaryKind::Compliant) base.input = b.input;
+    if (b.kind == BoundaryKind::Compliant) base.input = b.input, base.moving_frame = column_base_->moves_frame();
     return base;
   }
   if (model.grid().held_on(static_cast<Side>(2 * (Dim - 1))) != 0) base.kind = ColumnBase<Dim>::Kind::Fixed;
@@ -197,11 +218,12 @@ void EdgeBoundary<Dim>::prepare(const Model<Dim>& model) {
       L.shear_modulus = m.shear_modulus();
       L.p_wave_modulus = m.p_wave_modulus();
       L.lame = m.p_wave_modulus() - 2.0 * m.shear_modulus();
+      L.rayleigh_alpha = m.rayleigh().alpha;  // the column damps as the soil beside it does
+      L.rayleigh_beta = m.rayleigh().beta;
     }
     while (!layers.empty() && !(layers.back().density > 0.0)) layers.pop_back();
     if (layers.empty())
-      throw InputError("boundary: the free_field edge has no soil beside it (side " + side_name(settings_.side) +
-                       ")");
+      throw InputError("boundary: the free_field edge has no soil beside it (side " + side_name(settings_.side) + ")");
     column_.emplace(std::move(layers), h, column_base(model));
     for (std::size_t k = 0; k < n_edge; ++k) {
       const int j = G.node_coords(edge_nodes_[k])[V] - g;
@@ -226,10 +248,10 @@ void EdgeBoundary<Dim>::edge_forces(Model<Dim>& model, const StepContext& c) {
     last_force_ += reaction_[k];
   }
   const double dt = c.dt, t_end = c.phase_time + c.dt, eps = model.mass_threshold();
-  if (column_) column_->advance(dt, t_end);
+  if (column_) column_->advance(dt, t_end, model.frame_acceleration());
   const int a = axis();
   Vec<Dim> input = Vec<Dim>::Zero();
-  if (settings_.kind == BoundaryKind::Compliant)
+  if (settings_.kind == BoundaryKind::Compliant && !moves_frame())
     for (int d = 0; d < Dim; ++d) input[d] = settings_.input[d] ? settings_.input[d]->at(t_end) : 0.0;
   const int g = G.ghost();
   for (std::size_t k = 0; k < edge_nodes_.size(); ++k) {

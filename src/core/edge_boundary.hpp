@@ -45,6 +45,11 @@ struct BoundarySettings {
   double density = 0.0, vs = 0.0, vp = 0.0;
   // Compliant: the outcrop velocity per axis (m/s, read at the phase time); null: zero.
   std::array<std::shared_ptr<const History>, Dim> input{};
+  // Compliant with an input: compute the model in the frame that moves with the outcrop motion (its
+  // acceleration a body force, the dashpots on the velocity relative to it). A record carries the whole
+  // ground by its displacement, metres for a near-fault one: on the fixed grid the particles at a side
+  // left the domain. Relative displacements (crest to base) are the same in either frame.
+  bool moving_frame = true;
 };
 
 template <int Dim>
@@ -71,6 +76,12 @@ class EdgeBoundary : public Fix<Dim> {
   void set_column_base(std::shared_ptr<const EdgeBoundary> base) { column_base_ = std::move(base); }
 
   void edge_forces(Model<Dim>& model, const StepContext& c) override;
+  // A compliant edge in its moving frame: the frame's acceleration for the step, (v_in(t + dt) - v_in(t)) / dt,
+  // so that the frame's velocity is the input's at every step's end.
+  void before_step(Model<Dim>& model, const StepContext& c) override;
+  bool moves_frame() const;
+  // The moving frame's velocity (m/s): what to add to the model's velocities for the absolute ones.
+  const Vec<Dim>& frame_velocity() const { return frame_velocity_; }
   // Per direction, the sum of |recorded reaction| over the nodes this edge holds, and the share `delta`
   // of a correction to spread over them in proportion to it (balance_recorded_reactions).
   Vec<Dim> reaction_magnitude() const;
@@ -105,12 +116,13 @@ class EdgeBoundary : public Fix<Dim> {
   std::vector<unsigned char> own_;  // per held node: the directions this edge holds (not a corner's other)
   bool holding_ = false;
   bool prepared_ = false;
-  std::vector<double> area_;            // per edge node: the edge's area it stands for (m in 2D)
+  std::vector<double> area_;             // per edge node: the edge's area it stands for (m in 2D)
   std::vector<double> rho_vs_, rho_vp_;  // per edge node: impedances (kg/m^2/s)
   std::vector<int> column_node_;         // per edge node: its column node (free field), -1: none
   std::optional<FreeFieldColumn<Dim>> column_;
   std::shared_ptr<const EdgeBoundary> column_base_;
   Vec<Dim> last_force_ = Vec<Dim>::Zero();
+  Vec<Dim> frame_velocity_ = Vec<Dim>::Zero();  // the moving frame's velocity at the last step's end
 };
 
 // At the end of a gravity phase: the reactions the edges recorded, with those of the grid's other

@@ -24,7 +24,7 @@ FreeFieldColumn<Dim>::FreeFieldColumn(std::vector<ColumnLayer> layers, double sp
 }
 
 template <int Dim>
-void FreeFieldColumn<Dim>::advance(double dt, double t_end) {
+void FreeFieldColumn<Dim>::advance(double dt, double t_end, const Vec<Dim>& frame_acceleration) {
   const int n = node_count();
   for (auto& f : force_) f.setZero();
   for (int e = 0; e + 1 < n; ++e) {
@@ -44,13 +44,13 @@ void FreeFieldColumn<Dim>::advance(double dt, double t_end) {
     force_[e] += stress_[e];
     force_[e + 1] -= stress_[e];
   }
-  for (int j = 0; j < n; ++j) force_[j] -= alpha_mass_[j] * v_[j];
+  for (int j = 0; j < n; ++j) force_[j] -= alpha_mass_[j] * v_[j] + mass_[j] * frame_acceleration;
   if (base_.kind == ColumnBase<Dim>::Kind::Dashpot && mass_[0] > 0.0) {
     // Implicit in the end velocity: the dashpot's force is the one that ends the step at the velocity
     // it drives towards, whatever its impedance (no time-step limit).
     for (int d = 0; d < Dim; ++d) {
       const double c = d == V ? base_.rho_vp : base_.rho_vs;
-      const double target = base_.input[d] ? base_.input[d]->at(t_end) : 0.0;
+      const double target = base_.input[d] && !base_.moving_frame ? base_.input[d]->at(t_end) : 0.0;
       const double m = mass_[0];
       force_[0][d] += c * (m * target - m * v_[0][d] - dt * force_[0][d]) / (m + dt * c);
     }
@@ -72,8 +72,8 @@ Vec<Dim> FreeFieldColumn<Dim>::face_stress(int node, int axis) const {
   for (int e = node - 1; e <= node; ++e) {
     if (e < 0 || e >= static_cast<int>(layers_.size()) || !(layers_[e].density > 0.0)) continue;
     const ColumnLayer& L = layers_[e];
-    t[V] += stress_[e][axis];                                     // shear sigma_axis,V
-    t[axis] += L.lame / L.p_wave_modulus * stress_[e][V];         // 1D compression's lateral stress
+    t[V] += stress_[e][axis];                              // shear sigma_axis,V
+    t[axis] += L.lame / L.p_wave_modulus * stress_[e][V];  // 1D compression's lateral stress
     ++count;
   }
   return count > 0 ? Vec<Dim>(t / count) : t;

@@ -40,6 +40,7 @@ struct ColumnBase {
   // the outcrop velocity it brings in (null: none, an absorbing base).
   double rho_vs = 0.0, rho_vp = 0.0;
   std::array<std::shared_ptr<const History>, Dim> input{};
+  bool moving_frame = false;  // the column moves relative to the input: its base dashpot targets zero
 };
 
 template <int Dim>
@@ -53,8 +54,9 @@ class FreeFieldColumn {
   // the last one (y in 2D, z in 3D).
   FreeFieldColumn(std::vector<ColumnLayer> layers, double spacing, ColumnBase<Dim> base);
 
-  // One explicit step of length dt; `t_end` is the phase time at its end (the base input is read there).
-  void advance(double dt, double t_end);
+  // One explicit step of length dt; `t_end` is the phase time at its end (the base input is read there);
+  // `frame_acceleration` that of the frame the column moves in (a body force -rho a).
+  void advance(double dt, double t_end, const Vec<Dim>& frame_acceleration);
 
   int node_count() const { return static_cast<int>(u_.size()); }
   const Vec<Dim>& velocity(int node) const { return v_[node]; }

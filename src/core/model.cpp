@@ -99,6 +99,7 @@ template <int Dim>
 Model<Dim> Model<Dim>::copy_without_fixes() const {
   Model copy(*this);
   copy.fixes_.clear();
+  copy.frame_acceleration_.setZero();  // the fix that moved the frame stays behind
   return copy;
 }
 

@@ -120,6 +120,12 @@ class Model {
   // Detaches a fix (a phase's damping or monitor when the phase ends); false when it was not attached.
   bool remove_fix(const Fix<Dim>* fix);
 
+  // The acceleration of the frame the model moves in (m/s^2): every particle feels gravity - a. A
+  // compliant base computes the model relative to its outcrop motion (EdgeBoundary), so that the ground
+  // stays where the grid is however far a record carries it; set for each step by that fix.
+  void set_frame_acceleration(const Vec<Dim>& a) { frame_acceleration_ = a; }
+  const Vec<Dim>& frame_acceleration() const { return frame_acceleration_; }
+
   // --- phases ---
   // Starts a calculation phase now: histories of rigid bodies are read at the time since this call,
   // and rigid bodies stay at rest unless `rigid_bodies_move`.
@@ -244,6 +250,7 @@ class Model {
   double phase_start_ = 0.0;
   bool rigid_bodies_move_ = true;
   bool measure_balance_ = false;
+  Vec<Dim> frame_acceleration_ = Vec<Dim>::Zero();
   Balance balance_;
   std::vector<double> balance_scratch_;
 

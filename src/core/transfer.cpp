@@ -14,7 +14,7 @@ template <int Dim>
 template <class Shape, bool Contact>
 void Model<Dim>::particles_to_grid() {
   const auto& st = support_.template stencils<Shape>();
-  const Vec<Dim> g = settings_.gravity;
+  const Vec<Dim> g = settings_.gravity - frame_acceleration_;  // the frame's acceleration as a body force
   const bool apic = settings_.transfer == Transfer::Apic;
   const MaterialConstants* damped = constants_.any_rayleigh ? &constants_ : nullptr;
   auto& P = particles_;

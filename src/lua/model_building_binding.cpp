@@ -78,6 +78,10 @@ const Key kBoundaryKeys[] = {
                 "compliant: the OUTCROP velocity (a record on rock at the surface, twice the incident wave), read "
                 "at the phase time")
         .shown("{0, 0}"),
+    arg::choice("frame", "outcrop|fixed", "outcrop",
+                "compliant with an input: outcrop computes the model relative to the outcrop motion (its "
+                "acceleration a body force; ux, vx are relative to it, and a record may carry the ground metres "
+                "without leaving the grid), fixed in the grid's frame (absolute motion, for small ones)"),
     arg::number("density", "kg/m3", "of the medium beyond the edge (compliant: required)")
         .in(above(0))
         .shown("the soil next to the edge"),
@@ -301,6 +305,9 @@ int model_boundary(lua_State* L) {
   s.vs = a.number("vs", 0.0);
   s.vp = a.number("vp", 0.0);
   if (given == 3 && !(s.vp > s.vs)) throw Error("key 'vp': it must exceed vs");
+  s.moving_frame = a.choice("frame") == "outcrop";
+  if (a.has("frame") && s.kind != BoundaryKind::Compliant)
+    throw Error("key 'frame': only a compliant edge moves the frame (kind = \"compliant\")");
   if (a.has("input")) {
     if (s.kind != BoundaryKind::Compliant)
       throw Error("key 'input': only a compliant edge takes an input motion (kind = \"compliant\")");

@@ -32,6 +32,8 @@ constexpr const char* kProbes = "PROBES";
 // Each probe's phases, phase times and reference (ux_rel, ...): optional, so that a checkpoint written
 // before them still restores (its probes' earlier samples then have no phase).
 constexpr const char* kProbeExtra = "PROBEXT";
+// The edge boundaries (m:boundary): optional, a checkpoint without them has none.
+constexpr const char* kBoundaries = "EDGES";
 constexpr const char* kOutput = "OUTPUT";
 constexpr const char* kRun = "RUN";
 
@@ -216,6 +218,11 @@ std::string velocity_history_key(const std::string& body, int axis) {
   return body + "." + names[axis];
 }
 
+std::string boundary_history_key(Side side, int axis) {
+  static const char* sides[] = {"left", "right", "bottom", "top", "back", "front"};
+  return std::string("boundary.") + sides[static_cast<int>(side)] + "." + std::string(1, "xyz"[axis]);
+}
+
 // The one place that reads and restores the private state of the model, the schedule, the probes, the
 // output and the simulation: each function mirrors its writer, section by section.
 template <int Dim>
@@ -235,6 +242,7 @@ class CheckpointAccess {
     write_schedule(file.section(kSchedule), sim.schedule_);
     write_probes(file.section(kProbes), sim);
     write_probe_extra(file.section(kProbeExtra), sim);
+    if (!sim.boundaries_.empty()) write_boundaries(file.section(kBoundaries), sim);
     write_output(file.section(kOutput), sim);
     write_run(file.section(kRun), sim);
     file.write(path);
@@ -288,7 +296,10 @@ class CheckpointAccess {
       read_bodies(file.section(kBodies), m);
       read_particles(file.section(kParticles), m, file.version());
       read_grid(file.section(kGrid), m.grid_);
-      read_contact(file.section(kContact), m, histories);
+      std::vector<std::string> keys;  // the model's histories, for the supplied ones to name
+      read_contact(file.section(kContact), m, histories, keys);
+      if (file.has(kBoundaries)) read_boundaries(file.section(kBoundaries), sim, histories, keys);
+      check_supplied_histories(file.path(), histories, keys);
       read_clock(file.section(kClock), m);
       read_schedule(file.section(kSchedule), sim.schedule_);
       read_probes(file.section(kProbes), sim);
@@ -576,7 +587,8 @@ class CheckpointAccess {
     r.finish();
   }
 
-  static void read_contact(SectionReader r, Model<Dim>& m, const SuppliedHistories& supplied) {
+  static void read_contact(SectionReader r, Model<Dim>& m, const SuppliedHistories& supplied,
+                           std::vector<std::string>& keys) {
     const std::size_t pairs = r.count(16);
     for (std::size_t k = 0; k < pairs; ++k) {
       const int a = r.i32(), b = r.i32();
@@ -586,7 +598,6 @@ class CheckpointAccess {
     const std::size_t n = r.count(Dim * 3 * 8);
     if (n != m.bodies_.size())
       r.fail("rigid motions for " + std::to_string(n) + " bodies, not " + std::to_string(m.bodies_.size()));
-    std::vector<std::string> keys;
     for (std::size_t b = 0; b < n; ++b) {
       RigidMotion<Dim>& motion = m.contact_.motion_[b];
       for (int d = 0; d < Dim; ++d) {
@@ -601,13 +612,144 @@ class CheckpointAccess {
       motion.impulse = get_point<Dim>(r);
     }
     r.finish();
+  }
+
+  static void check_supplied_histories(const std::string& file, const SuppliedHistories& supplied,
+                                       const std::vector<std::string>& keys) {
     for (const auto& [key, history] : supplied) {
       if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
       std::string known;
       for (const auto& k : keys) known += (known.empty() ? "" : ", ") + k;
-      throw CheckpointError("checkpoint " + r.file() + ": histories: '" + key + "' names no history of the model (" +
+      throw CheckpointError("checkpoint " + file + ": histories: '" + key + "' names no history of the model (" +
                             (known.empty() ? "it has none" : "its histories: " + known) + ")");
     }
+  }
+
+  // --- edge boundaries: their settings, what they recorded and their free-field columns
+
+  static void write_boundaries(SectionWriter& w, const Simulation<Dim>& sim) {
+    w.count(sim.boundaries_.size());
+    for (const auto& edge : sim.boundaries_) {
+      const EdgeBoundary<Dim>& b = *edge;
+      const BoundarySettings<Dim>& s = b.settings_;
+      w.u8(static_cast<std::uint8_t>(s.side));
+      w.u8(static_cast<std::uint8_t>(s.kind));
+      for (double v : {s.density, s.vs, s.vp}) w.f64(v);
+      w.boolean(s.moving_frame);
+      for (int d = 0; d < Dim; ++d) {
+        w.boolean(static_cast<bool>(s.input[d]));
+        if (s.input[d]) put_history(w, *s.input[d]);
+      }
+      w.boolean(b.holding_);
+      w.boolean(b.prepared_);
+      w.array(b.own_);
+      w.count(b.reaction_.size());
+      for (const auto& r : b.reaction_) put_point<Dim>(w, r);
+      w.array(b.area_);
+      w.array(b.rho_vs_);
+      w.array(b.rho_vp_);
+      w.array(b.column_node_);
+      put_point<Dim>(w, b.frame_velocity_);
+      put_point<Dim>(w, b.last_force_);
+      w.boolean(b.column_.has_value());
+      if (!b.column_) continue;
+      const FreeFieldColumn<Dim>& c = *b.column_;
+      w.count(c.layers_.size());
+      for (const ColumnLayer& L : c.layers_)
+        for (double v : {L.density, L.shear_modulus, L.p_wave_modulus, L.lame, L.rayleigh_alpha, L.rayleigh_beta})
+          w.f64(v);
+      w.f64(c.spacing_);
+      w.u8(static_cast<std::uint8_t>(c.base_.kind));
+      w.f64(c.base_.rho_vs);
+      w.f64(c.base_.rho_vp);
+      w.boolean(c.base_.moving_frame);
+      for (const auto* field : {&c.u_, &c.v_, &c.stress_}) {
+        w.count(field->size());
+        for (const auto& x : *field) put_point<Dim>(w, x);
+      }
+    }
+  }
+
+  static std::vector<Vec<Dim>> get_points(SectionReader& r, std::size_t expected) {
+    const std::size_t n = r.count(Dim * 8);
+    if (n != expected) r.fail("an edge boundary's arrays of different lengths");
+    std::vector<Vec<Dim>> v(n);
+    for (auto& x : v) x = get_point<Dim>(r);
+    return v;
+  }
+
+  static void read_boundaries(SectionReader r, Simulation<Dim>& sim, const SuppliedHistories& supplied,
+                              std::vector<std::string>& keys) {
+    Model<Dim>& m = sim.model_;
+    const std::size_t n = r.count(16);
+    for (std::size_t k = 0; k < n; ++k) {
+      BoundarySettings<Dim> s;
+      const std::uint8_t side = r.u8(), kind = r.u8();
+      if (side >= 2 * Dim || kind > static_cast<std::uint8_t>(BoundaryKind::FreeField))
+        r.fail("an edge boundary of an unknown side or kind");
+      s.side = static_cast<Side>(side);
+      s.kind = static_cast<BoundaryKind>(kind);
+      s.density = r.f64(), s.vs = r.f64(), s.vp = r.f64();
+      s.moving_frame = r.boolean();
+      for (int d = 0; d < Dim; ++d) {
+        if (!r.boolean()) continue;
+        const std::string key = boundary_history_key(s.side, d);
+        keys.push_back(key);
+        s.input[d] = get_history(r, key, "the input " + key + " of a compliant edge", supplied);
+      }
+      auto edge = std::make_shared<EdgeBoundary<Dim>>(m.grid_, s);  // checks the settings again
+      EdgeBoundary<Dim>& b = *edge;
+      for (const auto& other : sim.boundaries_)
+        if (other->settings().side == s.side) r.fail("two edge boundaries on one side");
+      b.holding_ = r.boolean();
+      b.prepared_ = r.boolean();
+      b.own_ = r.array<unsigned char>();
+      if (b.holding_ && b.own_.size() != b.held_nodes_.size()) r.fail("an edge boundary's held nodes do not fit");
+      b.reaction_ = get_points(r, b.held_nodes_.size());
+      const std::size_t edge_nodes = b.prepared_ ? b.edge_nodes_.size() : 0;
+      b.area_ = r.array<double>();
+      b.rho_vs_ = r.array<double>();
+      b.rho_vp_ = r.array<double>();
+      b.column_node_ = r.array<int>();
+      for (std::size_t size : {b.area_.size(), b.rho_vs_.size(), b.rho_vp_.size(), b.column_node_.size()})
+        if (size != edge_nodes) r.fail("an edge boundary's node arrays do not fit the grid");
+      b.frame_velocity_ = get_point<Dim>(r);
+      b.last_force_ = get_point<Dim>(r);
+      if (r.boolean()) {
+        std::vector<ColumnLayer> layers(r.count(6 * 8));
+        for (ColumnLayer& L : layers) {
+          L.density = r.f64(), L.shear_modulus = r.f64(), L.p_wave_modulus = r.f64(), L.lame = r.f64();
+          L.rayleigh_alpha = r.f64(), L.rayleigh_beta = r.f64();
+          if (!(L.density >= 0.0) || (L.density > 0.0 && !(L.p_wave_modulus > 0.0)))
+            r.fail("a free-field column layer without stiffness");
+        }
+        const double spacing = r.f64();
+        ColumnBase<Dim> base;
+        const std::uint8_t base_kind = r.u8();
+        if (base_kind > static_cast<std::uint8_t>(ColumnBase<Dim>::Kind::Dashpot)) r.fail("an unknown column base");
+        base.kind = static_cast<typename ColumnBase<Dim>::Kind>(base_kind);
+        base.rho_vs = r.f64(), base.rho_vp = r.f64();
+        base.moving_frame = r.boolean();
+        const std::size_t nodes = layers.size() + 1;
+        FreeFieldColumn<Dim> column(std::move(layers), spacing, base);
+        column.u_ = get_points(r, nodes);
+        column.v_ = get_points(r, nodes);
+        column.stress_ = get_points(r, nodes - 1);
+        for (int j : b.column_node_)
+          if (j >= static_cast<int>(nodes)) r.fail("an edge node of a column node that does not exist");
+        b.column_.emplace(std::move(column));
+      } else if (b.prepared_ && s.kind == BoundaryKind::FreeField) {
+        r.fail("a free-field edge without its column");
+      }
+      m.add_fix(edge);
+      sim.boundaries_.push_back(edge);
+    }
+    r.finish();
+    sim.link_boundaries();
+    // The columns' base input is the base's own (saved with it).
+    for (const auto& b : sim.boundaries_)
+      if (b->column_ && b->column_base_ && b->column_base_->settings().kind == BoundaryKind::Compliant)
+        b->column_->base_.input = b->column_base_->settings().input;
   }
 
   static void read_clock(SectionReader r, Model<Dim>& m) {

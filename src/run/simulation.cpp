@@ -131,13 +131,17 @@ std::shared_ptr<EdgeBoundary<Dim>> Simulation<Dim>::add_boundary(const BoundaryS
   if (gravity_) boundary->hold(model_.grid());  // added while a gravity phase is interrupted
   model_.add_fix(boundary);
   boundaries_.push_back(boundary);
-  // Free-field columns stand on the base's boundary (the lower edge of the vertical axis).
+  link_boundaries();
+  return boundary;
+}
+
+template <int Dim>
+void Simulation<Dim>::link_boundaries() {
   std::shared_ptr<const EdgeBoundary<Dim>> base;
   for (const auto& b : boundaries_)
     if (b->settings().side == static_cast<Side>(2 * (Dim - 1))) base = b;
   for (const auto& b : boundaries_)
     if (b->settings().kind == BoundaryKind::FreeField) b->set_column_base(base);
-  return boundary;
 }
 
 // While a gravity phase runs, the boundaries hold their edges as fixities and record the reactions.

@@ -184,6 +184,8 @@ class Simulation {
   void write_output();
   void begin_phase(const char* name, bool rigid_bodies_move);
   void hold_boundaries(bool hold);
+  // Free-field columns stand on the base's boundary (the lower edge of the vertical axis).
+  void link_boundaries();
 
   Model<Dim> model_;
   EventSchedule schedule_;

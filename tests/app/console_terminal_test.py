@@ -97,10 +97,10 @@ def main():
     for part in ("mpm.history.csv", "mpm.history.at2", "history:at"):
         if part not in listing:
             fail(f"help(mpm.history) lists no {part}", c)
-    c.line('help("absorbing")')
-    answer = c.expect("seismpm> ", 'help("absorbing")')
-    if "nothing in the API matches 'absorbing'" not in answer or "traceback" in answer:
-        fail('help("absorbing") does not say that nothing matched', c)
+    c.line('help("quicksand")')
+    answer = c.expect("seismpm> ", 'help("quicksand")')
+    if "nothing in the API matches 'quicksand'" not in answer or "traceback" in answer:
+        fail('help("quicksand") does not say that nothing matched', c)
 
     # Ctrl-C at the continuation prompt: the pending "m:" is dropped; the next line is an entry of its own.
     c.line("m:")

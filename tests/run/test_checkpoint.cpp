@@ -81,6 +81,48 @@ std::unique_ptr<Simulation<2>> shaken_slope(const std::string& dir, bool functio
   return sim;
 }
 
+// A damped Mohr-Coulomb layer 12 m x 6 m on a compliant base shaken by a tabulated outcrop velocity
+// (computed in its moving frame), with free-field sides: the edges' recorded reactions, their
+// free-field columns and the frame are state a restart must bring back.
+std::unique_ptr<Simulation<2>> layer_on_rock(const std::string& dir) {
+  ModelSettings<2> s;
+  s.upper = Vec<2>(12.0, 6.0);
+  s.cell = 1.0;
+  s.gravity = Vec<2>(0.0, -9.81);
+  auto sim = std::make_unique<Simulation<2>>(s);
+  auto& m = sim->model();
+  MohrCoulombParameters p;
+  p.density = 1800;
+  p.young = 5e7;
+  p.poisson = 0.3;
+  p.cohesion = 5000;
+  p.friction = 30;
+  auto material = std::make_shared<MohrCoulomb>(p);
+  material->set_rayleigh(Rayleigh::from_ratio(0.05, 2.0, 10.0));
+  const int soil = m.add_material(material, "soil");
+  m.fill(m.add_body("soil", 2), soil, Vec<2>(0, 0), Vec<2>(12, 6),
+         [](const Vec<2>& x) { return x[1] < 6.0 - 0.25 * x[0]; });
+  BoundarySettings<2> base;
+  base.side = Side::Bottom;
+  base.kind = BoundaryKind::Compliant;
+  base.density = 2400, base.vs = 600, base.vp = 1100;
+  base.input[0] = std::make_shared<TableHistory>(std::vector<double>{0, 0.05, 0.15, 0.25, 0.3},
+                                                 std::vector<double>{0, 0.3, -0.3, 0.1, 0});
+  sim->add_boundary(base);
+  for (Side side : {Side::Left, Side::Right}) {
+    BoundarySettings<2> b;
+    b.side = side;
+    b.kind = BoundaryKind::FreeField;
+    sim->add_boundary(b);
+  }
+  sim->add_probe("top", static_cast<int>(m.particles().size()) - 1, 0.01);
+  OutputSettings out;
+  out.dir = dir;
+  out.every = 0.1;
+  sim->set_output(out);
+  return sim;
+}
+
 // Every particle field, and the clock, bit for bit.
 void require_same_state(const Simulation<2>& a, const Simulation<2>& b) {
   const auto& pa = a.model().particles();
@@ -280,6 +322,40 @@ TEST_CASE("checkpoint: a Rayleigh-damped run restored mid-way ends bit for bit, 
   REQUIRE(c.interrupted_run() == RunKind::Dynamic);
   c.resume();
   require_same_state(*a, c);
+}
+
+TEST_CASE("checkpoint: edge boundaries restored mid-gravity and mid-shaking end bit for bit",
+          "[run][checkpoint][boundary]") {
+  const bool in_gravity = GENERATE(false, true);
+  CAPTURE(in_gravity);
+  const std::string dir_a = temp_dir("seismpm_ckpt_ea"), dir_b = temp_dir("seismpm_ckpt_eb");
+  const std::string file = dir_b + "/edges.chk";
+  GravityPhaseSettings g;
+  g.tolerance = 1e-3;
+  auto a = layer_on_rock(dir_a);
+  a->gravity_phase(g);
+  a->dynamic_phase(0.4, 0.0);
+  {
+    auto b = layer_on_rock(dir_b);
+    bool written = false;
+    b->set_periodic_checkpoint(file, 0.0, [&] {
+      const bool due = in_gravity ? b->model().steps() == 50 : b->model().phase_time() > 0.2;
+      if (written || !due || b->phase() != (in_gravity ? "gravity" : "dynamic")) return false;
+      return written = true;
+    });
+    b->gravity_phase(g);
+    b->dynamic_phase(0.4, 0.0);
+    REQUIRE(written);
+  }
+  const CheckpointReader checkpoint(file);
+  Simulation<2> c(checkpoint_settings<2>(checkpoint));
+  restore_checkpoint(checkpoint, c);
+  REQUIRE(c.boundaries().size() == 3);
+  CHECK(c.boundaries()[0]->holding() == in_gravity);
+  c.resume();
+  if (in_gravity) c.dynamic_phase(0.4, 0.0);
+  require_same_state(*a, c);
+  for (std::size_t k = 0; k < 3; ++k) CHECK(a->boundaries()[k]->last_force() == c.boundaries()[k]->last_force());
 }
 
 TEST_CASE("checkpoint: a version 2 file is read as undamped", "[run][checkpoint][rayleigh]") {
