@@ -279,9 +279,8 @@ int model_fix(lua_State* L) {
   const Side side = parse_side(a.choice("side"), 2);
   for (const auto& b : h.simulation.boundaries())
     if (b->settings().side == side)
-      throw Error("key 'side': the " + a.choice("side") + " edge is a " +
-                  std::string(boundary_kind_name(b->settings().kind)) +
-                  " boundary (m:boundary); an edge is either fixed or a boundary");
+      throw Error("key 'side': the " + a.choice("side") + " edge is a boundary (m:boundary, kind " +
+                  std::string(boundary_kind_name(b->settings().kind)) + "); an edge is either fixed or a boundary");
   h.model.grid().fix(side, parse_dof(a.choice("dof"), 2));
   return 0;
 }
