@@ -86,7 +86,7 @@ class EdgeBoundary : public Fix<Dim> {
   // of a correction to spread over them in proportion to it (balance_recorded_reactions).
   Vec<Dim> reaction_magnitude() const;
   void correct_reaction(const Vec<Dim>& delta, const Vec<Dim>& magnitude);
-  // The MUSL re-map: the edge's nodes and the ghost nodes behind each move as one.
+  // The MUSL re-map: the edge's nodes and the ghost nodes behind each keep the velocity the dashpot gave.
   void nodal_velocities(Model<Dim>& model, const StepContext& c, VelocityStage stage) override;
 
   // The force the edge put on the grid in the last step (N per unit thickness in 2D): the static
@@ -123,6 +123,7 @@ class EdgeBoundary : public Fix<Dim> {
   std::shared_ptr<const EdgeBoundary> column_base_;
   Vec<Dim> last_force_ = Vec<Dim>::Zero();
   Vec<Dim> frame_velocity_ = Vec<Dim>::Zero();  // the moving frame's velocity at the last step's end
+  std::vector<Vec<Dim>> updated_;               // per edge node: its updated velocity this step (scratch)
 };
 
 // At the end of a gravity phase: the reactions the edges recorded, with those of the grid's other
