@@ -127,7 +127,15 @@ int model_strength_reduction(lua_State* L) {
   s.progress = session_now.progress;
   s.interrupt = &session_now.interrupted;
   // run_in_session clears the Ctrl-C flag and, when interrupted, the Lua hook.
-  const auto r = run_in_session(L, h, [&](Simulation<2>& sim) { return strength_reduction(sim.model(), s); });
+  const auto r = run_in_session(L, h, [&](Simulation<2>& sim) {
+    // The trials are static: edge boundaries hold as in a gravity phase, and let go again after.
+    struct Held {
+      Simulation<2>& sim;
+      explicit Held(Simulation<2>& s) : sim(s) { sim.hold_boundaries(true); }
+      ~Held() { sim.hold_boundaries(false); }
+    } held(sim);
+    return strength_reduction(sim.model(), s);
+  });
   push_result(L, r);
   return 1;
 }

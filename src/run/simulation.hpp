@@ -98,6 +98,10 @@ class Simulation {
   // stands on the base's boundary when there is one.
   std::shared_ptr<EdgeBoundary<Dim>> add_boundary(const BoundarySettings<Dim>& settings);
   const std::vector<std::shared_ptr<EdgeBoundary<Dim>>>& boundaries() const { return boundaries_; }
+  // Holds (true) or releases the boundaries' edges as fixities. The gravity phase does it itself; a
+  // static analysis on a copy of the model (strength reduction) needs them held too, else its ground
+  // stands on nothing.
+  void hold_boundaries(bool hold);
 
   // --- how runs behave ---
   // The local damping coefficient for this and later runs (in [0, 1)).
@@ -183,7 +187,6 @@ class Simulation {
   void sample_probe(std::size_t k);
   void write_output();
   void begin_phase(const char* name, bool rigid_bodies_move);
-  void hold_boundaries(bool hold);
   // Free-field columns stand on the base's boundary (the lower edge of the vertical axis).
   void link_boundaries();
 

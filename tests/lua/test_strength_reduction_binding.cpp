@@ -107,3 +107,30 @@ TEST_CASE("m:strength_reduction on a cohesionless slope gives the infinite slope
   )");
   CHECK(error == "");
 }
+
+// Edge boundaries hold in the trials as in a gravity phase: the same factor as the fixities they stand
+// for (the base in x and y, the sides in x); they let go when it ends. Before, the trials' copy of
+// the model had no edges at all and its ground fell through the base.
+TEST_CASE("m:strength_reduction holds edge boundaries like the fixities they stand for", "[lua][srf][boundary]") {
+  auto slope = [](const char* edges) {
+    return std::string(R"(
+      local m = mpm.model{ domain = {{0, 0}, {40, 20}}, cell = 4 }
+      local soil = mpm.material.mohr_coulomb{ density = 1900, young = 5e7, poisson = 0.3, cohesion = 10e3,
+                                              friction = 30 }
+      m:body{ name = "soil", material = soil,
+              shape = mpm.geometry.slope{ left = 0, right = 40, crest = {15, 20}, toe_level = 10, angle = 35 } }
+    )") + edges +
+           R"(
+      fos = m:strength_reduction{ srf = { 0.8, 3 }, tolerance = 0.05 }.fos
+    )";
+  };
+  LuaFixture fixed, boundaries;
+  REQUIRE(fixed.error_of(slope(R"(m:fix{ side = "bottom", dof = "xy" }; m:fix{ side = "left", dof = "x" }
+                                  m:fix{ side = "right", dof = "x" })")) == "");
+  REQUIRE(boundaries.error_of(slope(R"(m:boundary{ side = "bottom", kind = "absorbing" }
+                                       m:boundary{ side = "left", kind = "absorbing" }
+                                       m:boundary{ side = "right", kind = "absorbing" })")) == "");
+  const double fos = fixed.number("fos");
+  CHECK(fos > 1.0);
+  CHECK(boundaries.number("fos") == fos);
+}
