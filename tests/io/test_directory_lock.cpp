@@ -18,18 +18,14 @@
 #include "io/atomic_file.hpp"
 #include "io/directory_lock.hpp"
 #include "io/output.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace seismpm;
 
-namespace {
+using seismpm::test::fresh_dir;
 
-std::string fresh_dir(const std::string& name) {
-  const std::string dir = (fs::temp_directory_path() / ("seismpm_test_" + name)).string();
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+namespace {
 
 // A child process that takes the lock of `dir`, reports on a pipe, and holds it until killed.
 struct Holder {

@@ -13,19 +13,15 @@
 #include "io/phases_file.hpp"
 #include "io/probe_plot.hpp"
 #include "lua/lua_fixture.hpp"
+#include "support/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace seismpm;
 using Catch::Contains;
 
-namespace {
+using seismpm::test::fresh_dir;
 
-std::string fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("seismpm_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir.string();
-}
+namespace {
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
