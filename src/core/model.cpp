@@ -25,6 +25,7 @@ Model<Dim>::Model(const ModelSettings<Dim>& settings)
   if (settings.sort_every < 1) throw InputError("model: sort_every must be >= 1");
   if (!(settings.max_dilation == 0.0 || settings.max_dilation >= 1.0))
     throw InputError("model: max_dilation must be 0 (no limit) or >= 1");
+  constants_.crack_closure = settings.crack_closure;
 }
 
 // ---------------------------------------------------------------- memory
@@ -88,6 +89,7 @@ void Model<Dim>::replace_material(int index, std::shared_ptr<const Material> mat
     throw InputError("replace_material: the density must stay the same (the particles' masses come from it)");
   materials_[index] = std::move(material);
   MaterialConstants constants;  // rebuilt whole: one source of truth for what the step reads
+  constants.crack_closure = settings_.crack_closure;
   for (const auto& m : materials_) constants.add(*m);
   constants_ = std::move(constants);
   // Undamped now: no viscous stress of an earlier damping may wait for damping to come back.
