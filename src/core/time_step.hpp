@@ -1,6 +1,6 @@
 // The explicit time step: dt = cfl h / max_p (c_p + |v_p|), c_p = sqrt((K + 4G/3) / rho_p) (at the
-// initial density for an opened particle), or a fixed one; and the guard that stops a run whose time step collapses. Stiffness-proportional Rayleigh
-// damping shortens it (signal_speed).
+// initial density for an opened particle), or a fixed one; and the guard that stops a run whose time step collapses.
+// Stiffness-proportional Rayleigh damping shortens it (signal_speed).
 #pragma once
 
 #include <cmath>
