@@ -51,6 +51,8 @@ EdgeBoundary<Dim>::EdgeBoundary(const Grid<Dim>& grid, const BoundarySettings<Di
                          ? "boundary: a compliant edge needs the half-space below: density, vs and vp > 0"
                          : "boundary: give density, vs and vp together (or none: the material next to the edge)");
   if (given && !(s.vp > s.vs)) throw InputError("boundary: vp must exceed vs");
+  if (given && !std::isfinite(s.density * s.vp))
+    throw InputError("boundary: the impedance density * vp overflows; give SI units (kg/m3, m/s)");
   if (s.kind != BoundaryKind::Compliant)
     for (const auto& h : s.input)
       if (h) throw InputError("boundary: only a compliant edge takes an input motion");
@@ -97,6 +99,18 @@ void EdgeBoundary<Dim>::release(Grid<Dim>& grid) {
   holding_ = false;
 }
 
+// The input velocity at t, refused when not finite (a record or a function gone wrong would otherwise
+// show up as particles with a NaN state, far from its cause).
+template <int Dim>
+double EdgeBoundary<Dim>::input_at(int axis, double t) const {
+  if (!settings_.input[axis]) return 0.0;
+  const double v = settings_.input[axis]->at(t);
+  if (!std::isfinite(v))
+    throw InputError("boundary on the " + side_name(settings_.side) + " edge: its input velocity " + "xyz"[axis] +
+                     " is " + std::to_string(v) + " at t = " + std::to_string(t) + " s");
+  return v;
+}
+
 template <int Dim>
 bool EdgeBoundary<Dim>::moves_frame() const {
   if (settings_.kind != BoundaryKind::Compliant || !settings_.moving_frame) return false;
@@ -111,7 +125,7 @@ void EdgeBoundary<Dim>::before_step(Model<Dim>& model, const StepContext& c) {
   Vec<Dim> a = Vec<Dim>::Zero();
   if (!holding_)
     for (int d = 0; d < Dim; ++d) {
-      const double v = settings_.input[d] ? settings_.input[d]->at(c.phase_time + c.dt) : 0.0;
+      const double v = input_at(d, c.phase_time + c.dt);
       a[d] = (v - frame_velocity_[d]) / c.dt;  // from the frame's own velocity: it starts at rest
       frame_velocity_[d] = v;
     }
@@ -252,7 +266,7 @@ void EdgeBoundary<Dim>::edge_forces(Model<Dim>& model, const StepContext& c) {
   const int a = axis();
   Vec<Dim> input = Vec<Dim>::Zero();
   if (settings_.kind == BoundaryKind::Compliant && !moves_frame())
-    for (int d = 0; d < Dim; ++d) input[d] = settings_.input[d] ? settings_.input[d]->at(t_end) : 0.0;
+    for (int d = 0; d < Dim; ++d) input[d] = input_at(d, t_end);
   const int g = G.ghost();
   for (std::size_t k = 0; k < edge_nodes_.size(); ++k) {
     const int i = edge_nodes_[k];

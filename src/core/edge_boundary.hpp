@@ -102,6 +102,7 @@ class EdgeBoundary : public Fix<Dim> {
   void prepare(const Model<Dim>& model);
   ColumnBase<Dim> column_base(const Model<Dim>& model) const;
   int axis() const { return static_cast<int>(settings_.side) / 2; }
+  double input_at(int axis, double t) const;
   double outward() const { return static_cast<int>(settings_.side) % 2 == 0 ? -1.0 : 1.0; }
 
   BoundarySettings<Dim> settings_;

@@ -259,6 +259,12 @@ TEST_CASE("bad input gives an error naming the key and the range", "[lua][errors
            "m:boundary{ side = 'bottom', kind = 'compliant', density = 2400, vs = 800, vp = 1400, input = { 'x', 0 } }",
        "key 'input' vx"},
       {model + "m:boundary{ side = 'bottom', kind = 'free_field' }", "a free_field edge is a lateral side"},
+      {model + "m:boundary{ side = 'bottom', kind = 'compliant', density = 1e308, vs = 1e308, vp = 1.7e308 }",
+       "the impedance density * vp overflows"},
+      {model + "b = m:body{ material = mat, shape = mpm.shape.rectangle{0.1, 0.1, 0.5, 0.5} } "
+               "m:boundary{ side = 'bottom', kind = 'compliant', density = 2400, vs = 800, vp = 1400, "
+               "input = { mpm.history.fn(function(t) return 0/0 end), 0 } } m:run{ duration = 0.01 }",
+       "boundary on the bottom edge: its input velocity x is"},
       {model + "m:boundary{ side = 'left', kind = 'absorbing' } m:boundary{ side = 'left', kind = 'free_field' }",
        "that side has a boundary already"},
       {model + "m:fix{ side = 'left', dof = 'x' } m:boundary{ side = 'left', kind = 'absorbing' }", "held by m:fix"},
