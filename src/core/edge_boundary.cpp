@@ -9,13 +9,6 @@
 
 namespace seismpm {
 
-namespace {
-std::string side_name(Side side) {
-  static const char* names[] = {"left", "right", "bottom", "top", "back", "front"};
-  return names[static_cast<int>(side)];
-}
-}  // namespace
-
 BoundaryKind parse_boundary_kind(std::string_view name) {
   if (name == "absorbing") return BoundaryKind::Absorbing;
   if (name == "compliant") return BoundaryKind::Compliant;
@@ -106,8 +99,8 @@ double EdgeBoundary<Dim>::input_at(int axis, double t) const {
   if (!settings_.input[axis]) return 0.0;
   const double v = settings_.input[axis]->at(t);
   if (!std::isfinite(v))
-    throw InputError("boundary on the " + side_name(settings_.side) + " edge: its input velocity " + "xyz"[axis] +
-                     " is " + std::to_string(v) + " at t = " + std::to_string(t) + " s");
+    throw InputError("boundary on the " + std::string(side_name(settings_.side)) + " edge: its input velocity " +
+                     "xyz"[axis] + " is " + std::to_string(v) + " at t = " + std::to_string(t) + " s");
   return v;
 }
 
@@ -237,7 +230,8 @@ void EdgeBoundary<Dim>::prepare(const Model<Dim>& model) {
     }
     while (!layers.empty() && !(layers.back().density > 0.0)) layers.pop_back();
     if (layers.empty())
-      throw InputError("boundary: the free_field edge has no soil beside it (side " + side_name(settings_.side) + ")");
+      throw InputError("boundary: the free_field edge has no soil beside it (side " +
+                       std::string(side_name(settings_.side)) + ")");
     column_.emplace(std::move(layers), h, column_base(model));
     for (std::size_t k = 0; k < n_edge; ++k) {
       const int j = G.node_coords(edge_nodes_[k])[V] - g;
@@ -326,9 +320,6 @@ void EdgeBoundary<Dim>::nodal_velocities(Model<Dim>& model, const StepContext&, 
   if (updated_.size() != n) return;  // no updated stage seen (a restart between the two)
   for (std::size_t k = 0; k < n; ++k) {
     const int i = edge_nodes_[k];
-    double m = G.mass[i];
-    for (int l = 0; l < g; ++l) m += G.mass[behind_[k * g + l]];
-    if (!(m > eps)) continue;
     if (G.mass[i] > eps) G.velocity[i] = updated_[k];
     for (int l = 0; l < g; ++l)
       if (G.mass[behind_[k * g + l]] > eps) G.velocity[behind_[k * g + l]] = updated_[k];

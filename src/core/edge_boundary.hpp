@@ -80,8 +80,6 @@ class EdgeBoundary : public Fix<Dim> {
   // so that the frame's velocity is the input's at every step's end.
   void before_step(Model<Dim>& model, const StepContext& c) override;
   bool moves_frame() const;
-  // The moving frame's velocity (m/s): what to add to the model's velocities for the absolute ones.
-  const Vec<Dim>& frame_velocity() const { return frame_velocity_; }
   // Per direction, the sum of |recorded reaction| over the nodes this edge holds, and the share `delta`
   // of a correction to spread over them in proportion to it (balance_recorded_reactions).
   Vec<Dim> reaction_magnitude() const;
@@ -92,8 +90,6 @@ class EdgeBoundary : public Fix<Dim> {
   // The force the edge put on the grid in the last step (N per unit thickness in 2D): the static
   // reaction kept from the gravity phase plus tractions and dashpots.
   const Vec<Dim>& last_force() const { return last_force_; }
-  bool prepared() const { return prepared_; }
-  const FreeFieldColumn<Dim>* column() const { return column_ ? &*column_ : nullptr; }
 
  private:
   template <int>

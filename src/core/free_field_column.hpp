@@ -49,7 +49,6 @@ class CheckpointAccess;
 template <int Dim>
 class FreeFieldColumn {
  public:
-  FreeFieldColumn() = default;
   // Nodes every `spacing` m from the bottom up, layers[e] between nodes e and e+1; the vertical axis is
   // the last one (y in 2D, z in 3D).
   FreeFieldColumn(std::vector<ColumnLayer> layers, double spacing, ColumnBase<Dim> base);
@@ -60,7 +59,6 @@ class FreeFieldColumn {
 
   int node_count() const { return static_cast<int>(u_.size()); }
   const Vec<Dim>& velocity(int node) const { return v_[node]; }
-  const Vec<Dim>& displacement(int node) const { return u_[node]; }
   // The dynamic stress at a node, the mean over the elements beside it, as the traction components on a
   // vertical face with normal along `axis` (a lateral axis): t = sigma e_axis, without its sign.
   Vec<Dim> face_stress(int node, int axis) const;

@@ -137,10 +137,15 @@ void Grid<Dim>::hold_updated_velocities(double dt) {
   }
 }
 
+namespace {
+constexpr std::string_view kSideNames[] = {"left", "right", "bottom", "top", "back", "front"};
+}  // namespace
+
+std::string_view side_name(Side side) { return kSideNames[static_cast<int>(side)]; }
+
 Side parse_side(std::string_view name, int dim) {
-  static constexpr std::string_view names[] = {"left", "right", "bottom", "top", "back", "front"};
   for (int i = 0; i < 2 * dim; ++i)
-    if (name == names[i]) return static_cast<Side>(i);
+    if (name == kSideNames[i]) return static_cast<Side>(i);
   throw InputError("side must be one of left|right|bottom|top" + std::string(dim == 3 ? "|back|front" : "") +
                    ", got '" + std::string(name) + "'");
 }

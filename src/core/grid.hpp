@@ -87,6 +87,8 @@ class Grid {
 
 // Parses "left" | "right" | "bottom" | "top" | "back" | "front"; throws InputError otherwise.
 Side parse_side(std::string_view name, int dim);
+// The side's name, as parse_side reads it.
+std::string_view side_name(Side side);
 // Parses "x" | "y" | "z" | "xy" | "xz" | "yz" | "xyz" into a DofMask; throws InputError otherwise.
 unsigned parse_dof(std::string_view name, int dim);
 

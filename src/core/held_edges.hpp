@@ -32,14 +32,10 @@ class HeldEdges {
  public:
   // Reads, for each domain edge, whether its normal velocity is held (Grid::fix on that side).
   explicit HeldEdges(const Grid<Dim>& grid) : grid_(grid), lower_(grid.domain_lower()), upper_(grid.domain_upper()) {
-    const int g = grid.ghost();
+    const bool ghosts = grid.ghost() > 0;
     for (int d = 0; d < Dim; ++d) {
-      std::array<int, Dim> coords{};
-      for (int e = 0; e < Dim; ++e) coords[e] = grid.nodes(e) / 2;  // mid-edge: no other side's fixity
-      coords[d] = g;
-      held_[d][0] = g > 0 && (grid.fixity(node(coords)) & (1u << d));
-      coords[d] = grid.cells(d) - g;
-      held_[d][1] = g > 0 && (grid.fixity(node(coords)) & (1u << d));
+      held_[d][0] = ghosts && (grid.held_on(static_cast<Side>(2 * d)) & (1u << d));
+      held_[d][1] = ghosts && (grid.held_on(static_cast<Side>(2 * d + 1)) & (1u << d));
       any_ = any_ || held_[d][0] || held_[d][1];
     }
   }
@@ -89,12 +85,6 @@ class HeldEdges {
   }
 
  private:
-  int node(const std::array<int, Dim>& c) const {
-    int i = 0;
-    for (int d = 0; d < Dim; ++d) i += c[d] * grid_.stride(d);
-    return i;
-  }
-
   // Calls f(node, N) for the stencil's nodes whose local index along `axis` is `layer`.
   template <int K, class F>
   void for_each_in_layer(const Stencil<Dim, K>& st, int axis, int layer, F&& f) const {

@@ -294,12 +294,11 @@ int model_boundary(lua_State* L) {
   s.side = parse_side(a.choice("side"), 2);
   s.kind = parse_boundary_kind(a.choice("kind"));
   const int given = a.has("density") + a.has("vs") + a.has("vp");
+  const std::string missing = a.has("density") ? (a.has("vs") ? "vp" : "vs") : "density";
   if (s.kind == BoundaryKind::Compliant && given < 3)
-    throw Error(std::string("key '") + (a.has("density") ? (a.has("vs") ? "vp" : "vs") : "density") +
-                "': a compliant edge needs the half-space below it: density, vs and vp");
+    throw Error("key '" + missing + "': a compliant edge needs the half-space below it: density, vs and vp");
   if (given > 0 && given < 3)
-    throw Error(std::string("key '") + (a.has("density") ? (a.has("vs") ? "vp" : "vs") : "density") +
-                "': give density, vs and vp together, or none (the soil next to the edge)");
+    throw Error("key '" + missing + "': give density, vs and vp together, or none (the soil next to the edge)");
   s.density = a.number("density", 0.0);
   s.vs = a.number("vs", 0.0);
   s.vp = a.number("vp", 0.0);

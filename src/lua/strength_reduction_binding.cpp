@@ -133,7 +133,7 @@ int model_strength_reduction(lua_State* L) {
       Simulation<2>& sim;
       explicit Held(Simulation<2>& s) : sim(s) { sim.hold_boundaries(true); }
       ~Held() { sim.hold_boundaries(false); }
-    } held(sim);
+    } edges_held(sim);
     return strength_reduction(sim.model(), s);
   });
   push_result(L, r);

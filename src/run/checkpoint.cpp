@@ -219,8 +219,7 @@ std::string velocity_history_key(const std::string& body, int axis) {
 }
 
 std::string boundary_history_key(Side side, int axis) {
-  static const char* sides[] = {"left", "right", "bottom", "top", "back", "front"};
-  return std::string("boundary.") + sides[static_cast<int>(side)] + "." + std::string(1, "xyz"[axis]);
+  return "boundary." + std::string(side_name(side)) + "." + std::string(1, "xyz"[axis]);
 }
 
 // The one place that reads and restores the private state of the model, the schedule, the probes, the
