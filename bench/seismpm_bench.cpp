@@ -9,11 +9,14 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "cases/moving_base_block.hpp"
+#include "cases/shaking_table.hpp"
 #include "core/model.hpp"
 #include "materials/linear_elastic.hpp"
 #include "materials/mohr_coulomb.hpp"
@@ -74,18 +77,34 @@ struct Options {
   int steps = 100, repeat = 5;
   bool profile = false;
   std::vector<int> threads = {1, 2}, sizes = {25000, 50000, 100000};
+  std::vector<std::string> cases = {"linear", "gimp", "mc-sand", "contact", "glued", "no-base", "shaking-table"};
+  std::string baseline, save;
+  bool wants(const std::string& c) const { return std::find(cases.begin(), cases.end(), c) != cases.end(); }
 };
+
+// One measured median: "case particles threads" identifies it across binaries.
+struct Figure {
+  std::string name;
+  std::size_t particles;
+  int threads;
+  double rate;  // particle-steps per second
+};
+std::vector<Figure> figures;
+
+void record(const std::string& name, std::size_t particles, int threads, double rate) {
+  figures.push_back({name, particles, threads, rate});
+}
 
 // Median particle-steps per second over `repeat` models from `make`, each timed over `steps` steps
 // after 5 warm-up steps (first touches, first sort); `after(model, r)` looks at each one.
 template <class Make, class After>
-double median_rate(const Options& o, Make&& make, After&& after) {
+double median_rate(const Options& o, Make&& make, After&& after, int warm_up = 5) {
   std::vector<double> rates;
   for (int r = 0; r < o.repeat; ++r) {
     auto holder = make();
     Model<2>& m = holder.model();
     const std::size_t particles = m.particles().size();
-    for (int k = 0; k < 5; ++k) m.step();
+    for (int k = 0; k < warm_up; ++k) m.step();
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < o.steps; ++k) m.step();  // throws on a NaN
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -106,16 +125,30 @@ struct CaseModel {
   Model<2>& model() { return *b.model; }
 };
 
-void print_stages(const Options& o, const Model<2>& m) {
+void print_stages(const Options& o, const Model<2>& m, int warm_up = 5) {
   for (const auto& [stage, seconds] : m.stage_times())
-    std::printf("    %-20s %8.3f ms/step\n", stage, 1e3 * seconds / (o.steps + 5));
+    std::printf("    %-20s %8.3f ms/step\n", stage, 1e3 * seconds / (o.steps + warm_up));
+}
+
+void print_line(const std::string& name, std::size_t particles, int threads, double rate, const std::string& extra) {
+  std::printf("%-14s %-10zu %8d %10.3f %14.3fM   %s\n", name.c_str(), particles, threads, 1e3 * particles / rate,
+              rate / 1e6, extra.c_str());
+  std::fflush(stdout);
+  record(name, particles, threads, rate);
+}
+
+std::size_t yielding_count(const Model<2>& m) {
+  std::size_t n = 0;
+  for (auto y : m.particles().yield) n += y;
+  return n;
 }
 
 void bench_blocks(const Options& o) {
-  std::printf("seismpm_bench: 2D elastic block under gravity, MUSL, FLIP; median of %d runs of %d steps\n", o.repeat,
-              o.steps);
-  std::printf("%-8s %-10s %8s %10s %14s\n", "shape", "particles", "threads", "ms/step", "particle-steps/s");
-  for (ShapeKind shape : {ShapeKind::Linear, ShapeKind::Gimp})
+  std::printf("%-14s %-10s %8s %10s %14s\n", "case", "particles", "threads", "ms/step", "particle-steps/s");
+  std::printf("2D elastic block under gravity, MUSL, FLIP\n");
+  for (ShapeKind shape : {ShapeKind::Linear, ShapeKind::Gimp}) {
+    const std::string name(to_string(shape));
+    if (!o.wants(name)) continue;
     for (int n : o.sizes)
       for (int t : o.threads) {
         omp_set_num_threads(t);
@@ -123,15 +156,15 @@ void bench_blocks(const Options& o) {
         const double rate = median_rate(
             o, [&] { return OwnedModel{block(n, shape)}; },
             [&](const Model<2>& m, int) { particles = m.particles().size(); });
-        std::printf("%-8s %-10zu %8d %10.3f %14.3fM\n", std::string(to_string(shape)).c_str(), particles, t,
-                    1e3 * particles / rate, rate / 1e6);
-        std::fflush(stdout);
+        print_line(name, particles, t, rate, "");
       }
+  }
 }
 
 // Mohr-Coulomb column collapse: the first `steps` steps of the release, where most particles yield.
 void bench_sand_column(const Options& o) {
-  std::printf("\nMohr-Coulomb sand column collapse (c = 0), uGIMP, MUSL\n");
+  if (!o.wants("mc-sand")) return;
+  std::printf("Mohr-Coulomb sand column collapse (c = 0), uGIMP, MUSL\n");
   for (int t : o.threads) {
     omp_set_num_threads(t);
     std::size_t particles = 0, yielding = 0;
@@ -139,27 +172,28 @@ void bench_sand_column(const Options& o) {
         o, [&] { return OwnedModel{sand_column(o.profile)}; },
         [&](const Model<2>& m, int r) {
           particles = m.particles().size();
-          yielding = 0;
-          for (auto y : m.particles().yield) yielding += y;
+          yielding = yielding_count(m);
           if (o.profile && r == 0) print_stages(o, m);
         });
-    std::printf("%-8s %-10zu %8d %10.3f %14.3fM   (%zu particles yielding, no NaN)\n", "mc-sand", particles, t,
-                1e3 * particles / rate, rate / 1e6, yielding);
-    std::fflush(stdout);
+    print_line("mc-sand", particles, t, rate, "(" + std::to_string(yielding) + " particles yielding, no NaN)");
   }
 }
 
 // The moving-base block at a fine resolution: the cost of the contact fields.
 void bench_moving_base(const Options& o) {
-  std::printf("\nMoving base under an elastic block (1 m x 1 m, 1 cm cells, uGIMP), base sliding at 2 m/s\n");
   struct Variant {
     const char* name;
     bool base;
     cases::BaseContact contact;
   };
+  bool header = false;
   for (const Variant& v :
        {Variant{"contact", true, cases::BaseContact::Friction}, Variant{"glued", true, cases::BaseContact::None},
         Variant{"no-base", false, cases::BaseContact::None}}) {
+    if (!o.wants(v.name)) continue;
+    if (!header)
+      std::printf("Moving base under an elastic block (1 m x 1 m, 1 cm cells, uGIMP), base sliding at 2 m/s\n");
+    header = true;
     for (int t : o.threads) {
       omp_set_num_threads(t);
       std::size_t particles = 0, shared = 0;
@@ -180,11 +214,90 @@ void bench_moving_base(const Options& o) {
         shared = m.contact().nodes().count();
         if (o.profile && r == 0) print_stages(o, m);
       });
-      std::printf("%-8s %-10zu %8d %10.3f %14.3fM   (%zu shared nodes)\n", v.name, particles, t, 1e3 * particles / rate,
-                  rate / 1e6, shared);
-      std::fflush(stdout);
+      print_line(v.name, particles, t, rate, "(" + std::to_string(shared) + " shared nodes)");
     }
   }
+}
+
+// The shaking-table slope as the scenario runs it (Mohr-Coulomb soil in a rigid box with contact,
+// 0.75 cm cells), timed after 300 steps of strong shaking from K0 stresses have made it yield.
+void bench_shaking_table(const Options& o) {
+  if (!o.wants("shaking-table")) return;
+  constexpr int kWarmUp = 300;
+  std::printf("Shaking-table slope (MC soil, rigid box, contact, uGIMP, FLIP 0.98, 0.75 cm), after %d steps\n",
+              kWarmUp);
+  struct Holder {
+    cases::ShakingTable::Built b;
+    Model<2>& model() { return *b.model; }
+  };
+  for (int t : o.threads) {
+    omp_set_num_threads(t);
+    std::size_t particles = 0, yielding = 0;
+    const double rate = median_rate(
+        o,
+        [&] {
+          cases::ShakingTable c;
+          c.profile = o.profile;
+          return Holder{c.build()};
+        },
+        [&](const Model<2>& m, int r) {
+          particles = m.particles().size();
+          yielding = yielding_count(m);
+          if (o.profile && r == 0) print_stages(o, m, kWarmUp);
+        },
+        kWarmUp);
+    print_line("shaking-table", particles, t, rate, "(" + std::to_string(yielding) + " particles yielding)");
+  }
+}
+
+std::string key(const std::string& name, std::size_t particles, int threads) {
+  return name + " " + std::to_string(particles) + " " + std::to_string(threads);
+}
+
+// "case particles threads rate" lines, as --save writes them; '#' starts a comment.
+std::map<std::string, double> read_baseline(const std::string& file) {
+  std::map<std::string, double> out;
+  std::ifstream in(file);
+  if (!in) {
+    std::fprintf(stderr, "seismpm_bench: cannot read the baseline %s\n", file.c_str());
+    return out;
+  }
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream is(line);
+    std::string name;
+    std::size_t particles;
+    int threads;
+    double rate;
+    if (is >> name >> particles >> threads >> rate) out[key(name, particles, threads)] = rate;
+  }
+  return out;
+}
+
+void report_baseline(const Options& o) {
+  if (!o.save.empty()) {
+    std::ofstream out(o.save);
+    out << "# seismpm_bench medians: case particles threads particle-steps/s\n";
+    for (const Figure& f : figures) out << f.name << ' ' << f.particles << ' ' << f.threads << ' ' << f.rate << '\n';
+  }
+  if (o.baseline.empty()) return;
+  const auto base = read_baseline(o.baseline);
+  std::printf("ratio to %s:", o.baseline.c_str());
+  for (const Figure& f : figures) {
+    const auto it = base.find(key(f.name, f.particles, f.threads));
+    if (it == base.end())
+      std::printf("  %s/%zu/%dt -", f.name.c_str(), f.particles, f.threads);
+    else
+      std::printf("  %s/%zu/%dt %.2fx", f.name.c_str(), f.particles, f.threads, f.rate / it->second);
+  }
+  std::printf("\n");
+}
+
+std::vector<std::string> parse_words(const char* text) {
+  std::vector<std::string> out;
+  std::istringstream is(text);
+  for (std::string w; is >> w;) out.push_back(w);
+  return out;
 }
 
 bool parse_options(int argc, char** argv, Options& o) {
@@ -200,11 +313,18 @@ bool parse_options(int argc, char** argv, Options& o) {
       o.profile = true;
     } else if (!std::strcmp(argv[i], "--sizes") && has_value) {
       o.sizes = parse_list(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--cases") && has_value) {
+      o.cases = parse_words(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--baseline") && has_value) {
+      o.baseline = argv[++i];
+    } else if (!std::strcmp(argv[i], "--save") && has_value) {
+      o.save = argv[++i];
     } else {
-      std::fprintf(
-          stderr,
-          "usage: %s [--steps N] [--repeat R] [--threads \"1 2\"] [--sizes \"25000 50000 100000\"] [--profile]\n",
-          argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--steps N] [--repeat R] [--threads \"1 2\"] [--sizes \"25000 50000 100000\"]\n"
+                   "          [--cases \"linear gimp mc-sand contact glued no-base shaking-table\"] [--profile]\n"
+                   "          [--baseline FILE] [--save FILE]\n",
+                   argv[0]);
       return false;
     }
   }
@@ -216,8 +336,11 @@ bool parse_options(int argc, char** argv, Options& o) {
 int main(int argc, char** argv) {
   Options o;
   if (!parse_options(argc, argv, o)) return 2;
+  std::printf("seismpm_bench: median of %d runs of %d steps per case\n", o.repeat, o.steps);
   bench_blocks(o);
   bench_sand_column(o);
   bench_moving_base(o);
+  bench_shaking_table(o);
+  report_baseline(o);
   return 0;
 }

@@ -1,0 +1,28 @@
+#!/bin/bash
+# Old binary beside new, in one sitting: ROUNDS interleaved rounds of both benches (each its own
+# medians), then the median over rounds per case, and the new/old ratio.
+#   bench/compare.sh OLD_BENCH NEW_BENCH [ROUNDS] [-- seismpm_bench options]
+# Writes the old medians to bench/baseline.txt's format in $OUT (default /tmp/seismpm_compare).
+set -euo pipefail
+old=$1 new=$2
+rounds=${3:-3}
+shift 2; [ $# -gt 0 ] && [ "$1" != "--" ] && shift
+[ "${1:-}" = "--" ] && shift
+out=${OUT:-/tmp/seismpm_compare}
+mkdir -p "$out"
+for r in $(seq 1 "$rounds"); do
+  "$old" "$@" --save "$out/old_$r.txt" >"$out/old_$r.log"
+  "$new" "$@" --save "$out/new_$r.txt" >"$out/new_$r.log"
+  echo "round $r of $rounds done" >&2
+done
+# Median over rounds of each "case particles threads" key.
+medians() {
+  awk '!/^#/ { k = $1 " " $2 " " $3; v[k] = v[k] " " $4 }
+       END { for (k in v) { n = split(v[k], a, " "); asort(a); print k, a[int((n + 1) / 2)] } }' "$@" | sort
+}
+medians "$out"/old_*.txt >"$out/old.txt"
+medians "$out"/new_*.txt >"$out/new.txt"
+printf '%-14s %10s %8s %12s %12s %7s\n' case particles threads "old M/s" "new M/s" ratio
+join <(awk '{print $1"/"$2"/"$3, $4}' "$out/old.txt") <(awk '{print $1"/"$2"/"$3, $4}' "$out/new.txt") |
+  awk '{ split($1, k, "/"); printf "%-14s %10s %8s %12.3f %12.3f %6.2fx\n", k[1], k[2], k[3], $2 / 1e6, $3 / 1e6, $3 / $2 }'
+echo "old medians (a baseline for --baseline): $out/old.txt"
