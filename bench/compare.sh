@@ -17,8 +17,9 @@ for r in $(seq 1 "$rounds"); do
 done
 # Median over rounds of each "case particles threads" key.
 medians() {
-  awk '!/^#/ { k = $1 " " $2 " " $3; v[k] = v[k] " " $4 }
-       END { for (k in v) { n = split(v[k], a, " "); asort(a); print k, a[int((n + 1) / 2)] } }' "$@" | sort
+  grep -hv '^#' "$@" | sort -k1,1 -k2,2n -k3,3n -k4,4g |
+    awk '{ k = $1 " " $2 " " $3; n[k]++; v[k, n[k]] = $4 }
+         END { for (k in n) print k, v[k, int((n[k] + 1) / 2)] }' | sort
 }
 medians "$out"/old_*.txt >"$out/old.txt"
 medians "$out"/new_*.txt >"$out/new.txt"
