@@ -48,8 +48,8 @@ struct ShakingTable {
     p.cohesion = 780, p.friction = 23, p.dilation = 0, p.tension = 0;
     const int mat = m.add_material(std::make_shared<MohrCoulomb>(p));
     b.soil = m.add_body("soil", 2);
-    const PolygonRegion slope({{0, 0}, {L, 0}, {L, toe_y}, {crest_x + (crest_y - toe_y), toe_y}, {crest_x, crest_y},
-                               {0, crest_y}});
+    const PolygonRegion slope(
+        {{0, 0}, {L, 0}, {L, toe_y}, {crest_x + (crest_y - toe_y), toe_y}, {crest_x, crest_y}, {0, crest_y}});
     m.fill(b.soil, mat, slope.lower(), slope.upper(), [&](const Vec<2>& x) { return slope.contains(x); });
     const double a = amplitude, w = 2.0 * std::numbers::pi * frequency;
     const std::array<std::shared_ptr<const History>, 2> shake = {

@@ -332,9 +332,10 @@ void Model<Dim>::step_with(const StepContext& c) {
   update_nodal_velocities<Contact>(c);  // a = f/m, v^L = mv/m + dt a
   constrain<Contact>(VelocityStage::Updated, c);
   timer_.lap(Stage::Nodes);
-  grid_to_particles<Shape, Contact>(c);
+  const bool musl = settings_.scheme == Scheme::Musl;
+  grid_to_particles<Shape, Contact>(c, musl);  // with MUSL, also the updated momentum to the nodes
   timer_.lap(Stage::GridToParticles);
-  if (settings_.scheme == Scheme::Musl) {  // nodal velocity from the updated momentum
+  if (musl) {  // nodal velocity from the updated momentum
     remap_momentum<Shape, Contact>();
     constrain<Contact>(VelocityStage::Remapped, c);
   }

@@ -203,7 +203,7 @@ class Model {
   template <bool Contact>
   void constrain(VelocityStage stage, const StepContext& c);
   template <class Shape, bool Contact>
-  void grid_to_particles(const StepContext& c);
+  void grid_to_particles(const StepContext& c, bool remap);
   template <class Shape, bool Contact>
   void remap_momentum();
   template <class Shape, bool Contact>

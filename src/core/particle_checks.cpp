@@ -26,12 +26,14 @@ template <int Dim>
 void Model<Dim>::check_particles() const {
   const int n = static_cast<int>(particles_.size());
   const auto& P = particles_;
-  int bad = n;
-#pragma omp parallel for schedule(static) reduction(min : bad)
+  // One pass: the first invalid particle, and the first one outside (a non-finite one is reported first).
+  int bad = n, outside = n;
+#pragma omp parallel for schedule(static) reduction(min : bad, outside)
   for (int p = 0; p < n; ++p) {
     const bool finite = P.x[p].allFinite() && P.v[p].allFinite() && P.stress[p].allFinite() &&
                         std::isfinite(P.volume[p]) && P.volume[p] > 0.0;
     if (!finite) bad = std::min(bad, p);
+    if (!inside_domain(grid_, P.x[p])) outside = std::min(outside, p);
   }
   if (bad < n) {
     std::ostringstream os;
@@ -39,10 +41,7 @@ void Model<Dim>::check_particles() const {
        << ")";
     fail(bad, os.str());
   }
-#pragma omp parallel for schedule(static) reduction(min : bad)
-  for (int p = 0; p < n; ++p)
-    if (!inside_domain(grid_, P.x[p])) bad = std::min(bad, p);
-  if (bad < n) fail(bad, "left the grid");
+  if (outside < n) fail(outside, "left the grid");
 }
 
 template void Model<2>::fail(std::size_t, const std::string&) const;

@@ -26,14 +26,16 @@ class ParticleSupport {
     auto& st = stencils<Shape>();
     const int n = static_cast<int>(particles.size());
     st.resize(n);
+    cell_of.resize(n);
     int outside = n;
 #pragma omp parallel for schedule(static) reduction(min : outside)
-    for (int p = 0; p < n; ++p)
-      if (!make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p])) outside = std::min(outside, p);
+    for (int p = 0; p < n; ++p) {
+      if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p]))
+        cell_of[p] = cells.of(particles.x[p]);
+      else
+        outside = std::min(outside, p);
+    }
     if (outside < n) return outside;
-    cell_of.resize(n);
-#pragma omp parallel for schedule(static)
-    for (int p = 0; p < n; ++p) cell_of[p] = cells.of(particles.x[p]);
     const int per_layer = cells.per_layer();
     schedule.build(n, grid.cells(cells.slab_axis()), [&](int p) { return cell_of[p] / per_layer; });
     return n;

@@ -34,46 +34,39 @@ struct LinearShape {
 struct GimpShape {
   static constexpr int K = 3;
 
-  static double value(double r, double l) {
-    const double a = std::abs(r);
-    if (a < l) return 1.0 - (r * r + l * l) / (2.0 * l);
-    if (a < 1.0 - l) return 1.0 - a;
-    if (a < 1.0 + l) {
+  // Value and derivative at r, by piece; inv_2l = 1 / 2l (one division per axis, not one per node).
+  static void piece(double r, double l, double inv_2l, double& w, double& dw) {
+    const double a = std::abs(r), s = r < 0.0 ? -1.0 : 1.0;
+    if (a < l) {
+      w = 1.0 - (r * r + l * l) * inv_2l;
+      dw = -2.0 * r * inv_2l;
+    } else if (a < 1.0 - l) {
+      w = 1.0 - a;
+      dw = -s;
+    } else if (a < 1.0 + l) {
       const double b = 1.0 + l - a;
-      return b * b / (4.0 * l);
+      w = 0.5 * b * b * inv_2l;
+      dw = -s * b * inv_2l;
+    } else {
+      w = dw = 0.0;
     }
-    return 0.0;
   }
-
+  static double value(double r, double l) {
+    double w, dw;
+    piece(r, l, 0.5 / l, w, dw);
+    return w;
+  }
   static double derivative(double r, double l) {
-    const double a = std::abs(r);
-    const double s = r < 0.0 ? -1.0 : 1.0;
-    if (a < l) return -r / l;
-    if (a < 1.0 - l) return -s;
-    if (a < 1.0 + l) return -s * (1.0 + l - a) / (2.0 * l);
-    return 0.0;
+    double w, dw;
+    piece(r, l, 0.5 / l, w, dw);
+    return dw;
   }
 
   // Support is |xi - node| < 1 + l; with l <= 1/2 it holds at most 3 nodes.
   static int first_node(double xi, double l) { return static_cast<int>(std::floor(xi - 1.0 - l)) + 1; }
   static void eval(double xi, double l, int first, double* w, double* dw) {
-    for (int k = 0; k < K; ++k) {
-      // value() and derivative() in one pass over the pieces.
-      const double r = xi - (first + k), a = std::abs(r), s = r < 0.0 ? -1.0 : 1.0;
-      if (a < l) {
-        w[k] = 1.0 - (r * r + l * l) / (2.0 * l);
-        dw[k] = -r / l;
-      } else if (a < 1.0 - l) {
-        w[k] = 1.0 - a;
-        dw[k] = -s;
-      } else if (a < 1.0 + l) {
-        const double b = 1.0 + l - a;
-        w[k] = b * b / (4.0 * l);
-        dw[k] = -s * b / (2.0 * l);
-      } else {
-        w[k] = dw[k] = 0.0;
-      }
-    }
+    const double inv_2l = 0.5 / l;
+    for (int k = 0; k < K; ++k) piece(xi - (first + k), l, inv_2l, w[k], dw[k]);
   }
 };
 

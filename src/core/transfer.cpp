@@ -71,27 +71,40 @@ void Model<Dim>::constrain(VelocityStage stage, const StepContext& c) {
   for (auto& f : fixes_) f->nodal_velocities(*this, c, stage);
 }
 
-// FLIP/PIC velocity, position and displacement of every particle; rigid particles move at v_R.
+// FLIP/PIC velocity, position and displacement of every particle; rigid particles move at v_R. With
+// `remap` (MUSL), each deformable particle's new momentum goes straight on to the zeroed nodal momentum:
+// one pass over the particles instead of two. The gather reads velocity and acceleration, the scatter
+// writes only momentum, and the coloured schedule keeps both race-free and every node's sum in the same
+// order for any thread count.
 template <int Dim>
 template <class Shape, bool Contact>
-void Model<Dim>::grid_to_particles(const StepContext& c) {
+void Model<Dim>::grid_to_particles(const StepContext& c, bool remap) {
   const auto& st = support_.template stencils<Shape>();
-  const int n = static_cast<int>(particles_.size());
   const double dt = c.dt, alpha = settings_.flip;
   const bool apic = settings_.transfer == Transfer::Apic;
   auto& P = particles_;
-  const auto& G = grid_;
+  auto& G = grid_;
   const auto& S = contact_.nodes();
   const HeldEdges<Dim> held(G);
+  if (remap) {
+    const int nn = G.node_count();
 #pragma omp parallel for schedule(static)
-  for (int p = 0; p < n; ++p) {
+    for (int i = 0; i < nn; ++i) G.momentum[i].setZero();
+  }
+  auto scatter = [&](int p) {
+    const Vec<Dim> mv = P.mass[p] * P.v[p];
+    const Mat<Dim> mC = apic ? Mat<Dim>(P.mass[p] * P.affine[p]) : Mat<Dim>::Zero();
+    for_each_node_momentum(st[p], G, mv, apic ? &mC : nullptr,
+                           [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& mvi) { G.momentum[i] += N * mvi; });
+  };
+  auto update = [&](int p) {
     [[maybe_unused]] int f = 0;
     if constexpr (Contact) {
       const int b = P.body[p];
       if (contact_.rigid(b)) {  // prescribed: moves at v_R, whatever the grid says
         P.x[p] += dt * P.v[p];
         P.u[p] += dt * P.v[p];
-        continue;
+        return false;
       }
       f = contact_.field_of(b);
     }
@@ -165,41 +178,40 @@ void Model<Dim>::grid_to_particles(const StepContext& c) {
       P.x[p] += dt * vl;
       P.u[p] += dt * vl;
       held.keep_inside(P.x[p], P.u[p]);
-      continue;
+      return true;
     }
     P.x[p] += dt * vl;
     P.u[p] += dt * vl;
+    return true;
+  };
+  if (remap) {
+    support_.schedule.for_each([&](int p) {
+      if (update(p)) scatter(p);
+    });
+  } else {
+    const int n = static_cast<int>(particles_.size());
+#pragma omp parallel for schedule(static)
+    for (int p = 0; p < n; ++p) update(p);
   }
 }
 
-// MUSL: the nodal velocity from the updated particle momentum, for the strain increment.
+// MUSL: the nodal velocity from the updated particle momentum (scattered by grid_to_particles), for
+// the strain increment.
 template <int Dim>
 template <class Shape, bool Contact>
 void Model<Dim>::remap_momentum() {
-  const auto& st = support_.template stencils<Shape>();
-  const bool apic = settings_.transfer == Transfer::Apic;
-  auto& P = particles_;
   auto& G = grid_;
   const int nn = G.node_count();
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < nn; ++i) G.momentum[i].setZero();
-  support_.schedule.for_each([&](int p) {
-    if constexpr (Contact)
-      if (contact_.rigid(P.body[p])) return;
-    const Vec<Dim> mv = P.mass[p] * P.v[p];
-    const Mat<Dim> mC = apic ? Mat<Dim>(P.mass[p] * P.affine[p]) : Mat<Dim>::Zero();
-    for_each_node_momentum(st[p], G, mv, apic ? &mC : nullptr,
-                           [&](int i, double N, const Vec<Dim>&, const Vec<Dim>& mvi) { G.momentum[i] += N * mvi; });
-  });
   const double eps = mass_threshold_;
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < nn; ++i) G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
-  if constexpr (Contact) contact_.template remap_momentum<Shape>(P, G, support_, eps, apic);
+  if constexpr (Contact)
+    contact_.template remap_momentum<Shape>(particles_, G, support_, eps, settings_.transfer == Transfer::Apic);
 }
 
-#define SEISMPM_TRANSFERS(D, S, C)                                     \
-  template void Model<D>::particles_to_grid<S, C>();                   \
-  template void Model<D>::grid_to_particles<S, C>(const StepContext&); \
+#define SEISMPM_TRANSFERS(D, S, C)                                           \
+  template void Model<D>::particles_to_grid<S, C>();                         \
+  template void Model<D>::grid_to_particles<S, C>(const StepContext&, bool); \
   template void Model<D>::remap_momentum<S, C>();
 #define SEISMPM_NODAL(D, C)                                               \
   template void Model<D>::update_nodal_velocities<C>(const StepContext&); \

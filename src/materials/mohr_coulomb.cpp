@@ -40,7 +40,7 @@ struct Surface {
 };
 
 double equivalent_shear(const Eigen::Vector3d& e) {
-  const double m = e.sum() / 3.0;
+  const double m = e.sum() * (1.0 / 3.0);
   return std::sqrt(2.0 / 3.0 * (e.array() - m).square().sum());
 }
 
@@ -101,6 +101,15 @@ std::shared_ptr<const Material> MohrCoulomb::with_reduced_strength(double srf) c
 MohrCoulomb::MohrCoulomb(const MohrCoulombParameters& p) : Material(p.density), p_(p), elastic_{p.young, p.poisson} {
   validate(p_);
   fixed_ = tables(0.0);
+  const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
+  volumetric_compliance_ = lambda / (3.0 * lambda + two_g);
+  inverse_two_g_ = 1.0 / two_g;
+}
+
+// The elastic strain a return of ds in principal stress removed: D^-1 ds, with
+// D^-1 = (I - lambda / (3 lambda + 2G) 1 1^T) / 2G.
+Eigen::Vector3d MohrCoulomb::plastic_principal_strain(const Eigen::Vector3d& ds) const {
+  return (ds.array() - volumetric_compliance_ * ds.sum()).matrix() * inverse_two_g_;
 }
 
 MohrCoulomb::ReturnTables MohrCoulomb::tables(double plastic) const {
@@ -142,19 +151,8 @@ double MohrCoulomb::yield_function(const Sym& stress, double plastic) const {
   return (v[0] - v[2]) + (v[0] + v[2]) * s.sin_phi - 2.0 * s.c * s.cos_phi;
 }
 
-MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, double plastic) const {
-  const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
-  const Sym trial = elastic_trial(stress, de, lambda, two_g);
-  const Eigen::Vector3d sb = principal_values(trial);
-  ReturnTables softened;
-  if (p_.softening) {
-    // Elastic points need only the current strength; the return tables are built for plastic ones.
-    const Strength st = strength(p_, plastic);
-    if (st.k() * sb[0] - sb[2] - st.sigma_c() <= 0.0 && sb[0] <= p_.tension)
-      return {trial, Sym::Zero(), 0.0, Return::Elastic};
-    softened = tables(plastic);
-  }
-  const ReturnTables& t = p_.softening ? softened : fixed_;
+MohrCoulomb::Return MohrCoulomb::return_in_principal(const ReturnTables& t, const Eigen::Vector3d& sb,
+                                                     Eigen::Vector3d& result) const {
   const double scale = std::max({sb.cwiseAbs().maxCoeff(), t.sigma_c, p_.tension, 1e-300});
   const double tol = 1e-10 * scale;
   auto violated = [&](const Eigen::Vector3d& v, double margin) {
@@ -162,13 +160,7 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
       if (t.a[j].dot(v) - t.r[j] > margin) return true;
     return false;
   };
-  if (!violated(sb, 0.0)) return {trial, Sym::Zero(), 0.0, Return::Elastic};
-
-  const Principal pb = principal_stress(trial);
-  Eigen::Vector3d result = sb;
-  Return kind = Return::Apex;
-  bool found = false;
-  for (int c = 0; c < 8 && !found; ++c) {
+  for (int c = 0; c < 8; ++c) {
     if (!t.usable[c]) continue;
     const Candidate& cand = kCandidates[c];
     Eigen::Vector3d f = Eigen::Vector3d::Zero();
@@ -179,32 +171,102 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
     for (int j = 0; j < cand.n; ++j) v -= dl[j] * t.Db[cand.set[j]];
     if (v[0] < v[1] - tol || v[1] < v[2] - tol || violated(v, tol)) continue;
     result = v;
-    kind = cand.kind;
-    found = true;
+    return cand.kind;
   }
-  if (!found) {
-    // The apex: of the Mohr-Coulomb cone (c cot phi), or of the tension cut-off when it is lower.
-    const double a = std::min(t.apex, p_.tension);
-    result = Eigen::Vector3d::Constant(a);
-    kind = a < t.apex ? Return::TensionApex : Return::Apex;
+  // The apex: of the Mohr-Coulomb cone (c cot phi), or of the tension cut-off when it is lower.
+  const double a = std::min(t.apex, p_.tension);
+  result = Eigen::Vector3d::Constant(a);
+  return a < t.apex ? Return::TensionApex : Return::Apex;
+}
+
+// The strength tables at `plastic`, or nullptr where the ordered principal trial sb is elastic. For
+// ordered values the face and s1 <= T imply the other five planes (k >= 1, s1 >= s2 >= s3), exactly
+// in floating point too (rounding is monotone).
+const MohrCoulomb::ReturnTables* MohrCoulomb::plastic_tables(const Eigen::Vector3d& sb, double plastic,
+                                                             ReturnTables& softened) const {
+  if (!p_.softening) {
+    const ReturnTables& t = fixed_;
+    return t.a[0].dot(sb) - t.r[0] > 0.0 || sb[0] - p_.tension > 0.0 ? &t : nullptr;
   }
+  const Strength st = strength(p_, plastic);
+  if (st.k() * sb[0] - sb[2] - st.sigma_c() <= 0.0 && sb[0] <= p_.tension) return nullptr;
+  softened = tables(plastic);
+  return &softened;
+}
+
+// Plane-strain states (xz = yz = 0): the in-plane principal values m +- r take their directions from
+// the angle 2 theta (cos = d / r, sin = xy / r), and sigma_zz is the third value in any order, so the
+// return rotates back in closed form, with neither eigenvectors nor a square root beyond r's.
+template <bool WithPlasticStrain>
+MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plastic) const {
+  const double m = 0.5 * (trial[0] + trial[1]), d = 0.5 * (trial[0] - trial[1]);
+  const double r = std::sqrt(d * d + trial[3] * trial[3]);
+  // Slots 0 (in-plane major), 1 (in-plane minor), 2 (zz), ordered descending in `slot`.
+  double v[3] = {m + r, m - r, trial[2]};
+  int slot[3] = {0, 1, 2};
+  if (v[1] < v[2]) std::swap(v[1], v[2]), std::swap(slot[1], slot[2]);
+  if (v[0] < v[1]) std::swap(v[0], v[1]), std::swap(slot[0], slot[1]);
+  if (v[1] < v[2]) std::swap(v[1], v[2]), std::swap(slot[1], slot[2]);
+  const Eigen::Vector3d sb(v[0], v[1], v[2]);
   Result out;
+  ReturnTables softened;
+  const ReturnTables* t = plastic_tables(sb, plastic, softened);
+  if (!t) {
+    out.stress = trial;
+    out.kind = Return::Elastic;
+    if constexpr (WithPlasticStrain) out.plastic_strain.setZero();
+    out.shear_increment = 0.0;
+    return out;
+  }
+  Eigen::Vector3d result;
+  out.kind = return_in_principal(*t, sb, result);
+  const double inv_r = r > 0.0 ? 1.0 / r : 0.0;
+  const double cos2 = r > 0.0 ? d * inv_r : 1.0, sin2 = trial[3] * inv_r;
+  // sum_i value_i n_i n_i^T for in-plane values (major, minor) and zz.
+  auto to_tensor = [&](const Eigen::Vector3d& ordered) {
+    double by_slot[3];
+    for (int i = 0; i < 3; ++i) by_slot[slot[i]] = ordered[i];
+    const double mean = 0.5 * (by_slot[0] + by_slot[1]), half = 0.5 * (by_slot[0] - by_slot[1]);
+    Sym s;
+    s << mean + half * cos2, mean - half * cos2, by_slot[2], half * sin2, 0.0, 0.0;
+    return s;
+  };
+  out.stress = to_tensor(result);
+  const Eigen::Vector3d dep = plastic_principal_strain(sb - result);
+  if constexpr (WithPlasticStrain) out.plastic_strain = to_tensor(dep);
+  out.shear_increment = equivalent_shear(dep);
+  return out;
+}
+
+MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, double plastic) const {
+  const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
+  const Sym trial = elastic_trial(stress, de, lambda, two_g);
+  if (trial[4] == 0.0 && trial[5] == 0.0) return integrate_plane<true>(trial, plastic);
+  const Principal pb = principal_stress(trial);
+  const Eigen::Vector3d& sb = pb.value;
+  ReturnTables softened;
+  const ReturnTables* t = plastic_tables(sb, plastic, softened);
+  if (!t) return {trial, Sym::Zero(), 0.0, Return::Elastic};
+  Eigen::Vector3d result;
+  Result out;
+  out.kind = return_in_principal(*t, sb, result);
   out.stress = from_principal(result, pb.direction);
-  out.kind = kind;
-  // Plastic strain: the elastic strain the return removed, D^-1 (sb - s), with
-  // D^-1 = (I - lambda / (3 lambda + 2G) 1 1^T) / 2G.
-  const Eigen::Vector3d ds = sb - result;
-  const Eigen::Vector3d dep = (ds.array() - lambda / (3.0 * lambda + two_g) * ds.sum()).matrix() / two_g;
+  const Eigen::Vector3d dep = plastic_principal_strain(sb - result);
   out.plastic_strain = from_principal(dep, pb.direction);
   out.shear_increment = equivalent_shear(dep);
   return out;
 }
 
 void MohrCoulomb::update_stress(const StressUpdate& b) const {
+  const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < b.count; ++k) {
     const int p = b.index[k];
-    const Result r = integrate(b.stress[p], b.strain_increment[p], b.plastic_strain[p]);
+    const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+    // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
+    const Result r = trial[4] == 0.0 && trial[5] == 0.0
+                         ? integrate_plane<false>(trial, b.plastic_strain[p])
+                         : integrate(b.stress[p], b.strain_increment[p], b.plastic_strain[p]);
     b.stress[p] = r.stress;
     b.plastic_strain[p] += r.shear_increment;
     b.yield[p] = r.kind != Return::Elastic;

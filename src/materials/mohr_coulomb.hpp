@@ -66,10 +66,20 @@ class MohrCoulomb : public Material {
 
  private:
   ReturnTables tables(double plastic) const;
+  // The tables to return with, nullptr where the ordered trial principal stresses sb are elastic
+  // (`softened` holds the tables of a softening material).
+  const ReturnTables* plastic_tables(const Eigen::Vector3d& sb, double plastic, ReturnTables& softened) const;
+  // The return of ordered trial principal stresses sb (the directions stay): sets `result`.
+  Return return_in_principal(const ReturnTables& t, const Eigen::Vector3d& sb, Eigen::Vector3d& result) const;
+  Eigen::Vector3d plastic_principal_strain(const Eigen::Vector3d& ds) const;
+  // integrate() from an elastic trial with xz = yz = 0 (every 2D update): closed-form directions.
+  template <bool WithPlasticStrain>
+  Result integrate_plane(const Sym& trial, double plastic) const;
 
   MohrCoulombParameters p_;
   ElasticConstants elastic_;
-  ReturnTables fixed_;  // without softening
+  ReturnTables fixed_;                                    // without softening
+  double volumetric_compliance_ = 0, inverse_two_g_ = 0;  // lambda / (3 lambda + 2G), 1 / 2G
 };
 
 }  // namespace seismpm
