@@ -119,6 +119,10 @@ class ContactFields {
   std::vector<Vec<Dim>> slot_reaction_;  // per slot: force a rigid field gave this step
   std::vector<FieldSet> cell_fields_;    // per cell: the contact fields of its particles
   std::vector<char> near_shared_;        // per cell
+  // This step's occupied cells and newly marked nodes per scatter slab, and the cells flagged near a
+  // shared node: what the next step empties instead of the whole grid.
+  std::vector<std::vector<int>> slab_cells_, slab_nodes_;
+  std::vector<int> near_cells_;
 };
 
 extern template class ContactFields<2>;

@@ -6,8 +6,16 @@ template <int Dim>
 void SharedNodes<Dim>::clear(int node_count) {
   FieldSet empty;
   empty.fill(-1);
-  present_.assign(node_count, empty);
-  index_.assign(node_count, -1);
+  if (static_cast<int>(present_.size()) != node_count) {
+    present_.assign(node_count, empty);
+    index_.assign(node_count, -1);
+  } else {
+    for (const int i : touched_) {
+      present_[i] = empty;
+      index_[i] = -1;
+    }
+  }
+  touched_.clear();
 }
 
 namespace {
@@ -27,8 +35,7 @@ template <int Dim>
 void SharedNodes<Dim>::build(const ContactRules& rules) {
   node_.clear();
   fields_.clear();
-  const int n = static_cast<int>(present_.size());
-  for (int i = 0; i < n; ++i) {
+  for (const int i : touched_) {
     if (present_[i][1] < 0) continue;  // one field or none: the common grid fields serve
     int c = 2;
     while (c < kSlots && present_[i][c] >= 0) ++c;

@@ -32,11 +32,21 @@ class SharedNodes {
  public:
   static constexpr int kSlots = 4;
 
-  // Forgets every node's fields (start of a step).
+  // Forgets every node's fields (start of a step): only the nodes the last step marked, so that the
+  // cost follows the bodies, not the grid.
   void clear(int node_count);
-  // Records that `field` touches grid node `node`. Race-free when no two threads mark the same node
-  // (the coloured scatter). Returns false when the node has kSlots other fields already.
-  bool mark(int node, int field) { return add_field(present_[node], field); }
+  // Records that `field` touches grid node `node`, and appends the node to `touched` the first time
+  // it is marked this step. Race-free when no two threads mark the same node (the coloured scatter).
+  // Returns false when the node has kSlots other fields already.
+  bool mark(int node, int field, std::vector<int>& touched) {
+    if (present_[node][0] < 0) touched.push_back(node);
+    return add_field(present_[node], field);
+  }
+  // The same from one thread, into touched().
+  bool mark(int node, int field) { return mark(node, field, touched_); }
+  // The nodes marked this step (build() and the next clear() read them), in a fixed order: the
+  // marking threads' lists concatenated slab by slab.
+  std::vector<int>& touched() { return touched_; }
   // Lists the nodes where fields meet that must be kept apart (a rigid field, or two fields with a
   // declared contact) and zeroes their slots. Where only glued deformable fields meet, the common
   // grid fields serve: they are one body there.
@@ -66,6 +76,7 @@ class SharedNodes {
 
  private:
   std::vector<FieldSet> present_;   // per grid node
+  std::vector<int> touched_;        // the grid nodes marked this step
   std::vector<int> index_;          // per grid node
   std::vector<int> node_, fields_;  // per shared node
 };

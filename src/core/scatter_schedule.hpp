@@ -63,6 +63,16 @@ class ScatterSchedule {
       for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
   }
 
+  // Calls f(slab, p) for every particle, slabs in parallel, each slab's particles in order.
+  template <class F>
+  void for_each_in_own_cell_by_slab(F&& f) const {
+    const int slabs = static_cast<int>(begin_.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int s = 0; s < slabs; ++s)
+      for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(s, order_[k]);
+  }
+  int slabs() const { return static_cast<int>(begin_.size()) - 1; }
+
   // Calls f(p) for every particle; in parallel over slabs of one colour at a time.
   template <class F>
   void for_each(F&& f) const {

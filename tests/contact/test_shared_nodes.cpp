@@ -40,7 +40,31 @@ TEST_CASE("a field set takes up to four fields once each", "[contact][shared_nod
   CHECK(add_field(s, 5));  // a field it holds is still found when full
 }
 
-TEST_CASE("nodes of two or more fields are shared, in grid order", "[contact][shared_nodes]") {
+// clear() forgets only the nodes the last step marked: what it leaves must be as clean as a new grid.
+TEST_CASE("a step's marks are all forgotten by the next clear", "[contact][shared_nodes]") {
+  SharedNodes<2> sn;
+  sn.clear(10);
+  CHECK(sn.mark(3, 0));
+  CHECK(sn.mark(3, 1));
+  CHECK(sn.mark(8, 0));
+  CHECK(sn.mark(8, 2));
+  sn.build(all_in_contact(24));
+  REQUIRE(sn.count() == 2);
+  sn.clear(10);
+  CHECK(sn.touched().empty());
+  CHECK(sn.mark(5, 2));
+  CHECK(sn.mark(5, 1));
+  CHECK(sn.mark(3, 1));  // one field now: not shared
+  sn.build(all_in_contact(24));
+  REQUIRE(sn.count() == 1);
+  CHECK(sn.node(0) == 5);
+  CHECK(sn.index(5) == 0);
+  CHECK(sn.index(3) == -1);
+  CHECK(sn.index(8) == -1);
+  CHECK(sn.touched() == std::vector<int>{5, 3});  // first-marked order
+}
+
+TEST_CASE("nodes of two or more fields are shared, in the order first marked", "[contact][shared_nodes]") {
   SharedNodes<2> sn;
   sn.clear(10);
   // Node 3: fields 0 and 1. Node 5: field 2 only. Node 7: fields 0, 2, 1 (0 twice).
