@@ -42,8 +42,11 @@ sanitize: deps
 	@cmake --build $(SANITIZE_DIR) -j $(JOBS) --target seismpm
 	cd $(SANITIZE_DIR) && ctest --output-on-failure -j $(JOBS) -L sanitize
 
+# The step loop on every case (1 and 2 threads) with its ratio to bench/baseline.txt (the code before
+# the speed work, measured in one sitting beside it: bench/compare.sh), then the memory per particle.
 bench: build
-	./$(BUILD_DIR)/bench/seismpm_bench
+	./$(BUILD_DIR)/bench/seismpm_bench --baseline bench/baseline.txt
+	bench/memory.sh $(BUILD_DIR)/seismpm
 
 clean:
 	rm -rf $(BUILD_DIR)
