@@ -4,12 +4,18 @@
 #   bench/compare.sh OLD_BENCH NEW_BENCH [ROUNDS] [-- seismpm_bench options]
 # Writes the old medians to bench/baseline.txt's format in $OUT (default /tmp/seismpm_compare).
 set -euo pipefail
+export LC_ALL=C  # sort and join agree on the order of the keys
 old=$1 new=$2
-rounds=${3:-3}
-shift 2; [ $# -gt 0 ] && [ "$1" != "--" ] && shift
+shift 2
+rounds=3
+if [[ ${1:-} =~ ^[0-9]+$ ]]; then
+  rounds=$1
+  shift
+fi
 [ "${1:-}" = "--" ] && shift
 out=${OUT:-/tmp/seismpm_compare}
 mkdir -p "$out"
+rm -f "$out"/old_* "$out"/new_*  # an earlier comparison's rounds must not count
 for r in $(seq 1 "$rounds"); do
   "$old" "$@" --save "$out/old_$r.txt" >"$out/old_$r.log"
   "$new" "$@" --save "$out/new_$r.txt" >"$out/new_$r.log"

@@ -1,5 +1,5 @@
 // Race-free, deterministic particle-to-grid scatter. The grid is cut into slabs of whole cells
-// along one axis (the model picks the one with the most cells); slabs of one colour (even or odd) never touch the same
+// along one axis (CellIndex picks it); slabs of one colour (even or odd) never touch the same
 // node, so each colour runs in parallel, and every node sums its contributions in the same order whatever the number of
 // threads: results are bit-identical for any thread count.
 #pragma once

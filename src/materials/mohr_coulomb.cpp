@@ -214,7 +214,7 @@ MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plasti
   if (!t) {
     out.stress = trial;
     out.kind = Return::Elastic;
-    if constexpr (WithPlasticStrain) out.plastic_strain.setZero();
+    out.plastic_strain.setZero();
     out.shear_increment = 0.0;
     return out;
   }
@@ -233,7 +233,10 @@ MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plasti
   };
   out.stress = to_tensor(result);
   const Eigen::Vector3d dep = plastic_principal_strain(sb - result);
-  if constexpr (WithPlasticStrain) out.plastic_strain = to_tensor(dep);
+  if constexpr (WithPlasticStrain)
+    out.plastic_strain = to_tensor(dep);
+  else
+    out.plastic_strain.setZero();  // not asked for: defined all the same
   out.shear_increment = equivalent_shear(dep);
   return out;
 }
