@@ -120,8 +120,10 @@ struct OwnedModel {
   std::unique_ptr<Model<2>> m;
   Model<2>& model() { return *m; }
 };
+// A case's build (its simulation owns the model).
+template <class Built>
 struct CaseModel {
-  cases::MovingBaseBlock::Built b;
+  Built b;
   Model<2>& model() { return *b.model; }
 };
 
@@ -203,7 +205,7 @@ void bench_moving_base(const Options& o) {
         c.contact = v.contact;
         c.with_base = v.base;
         c.profile = o.profile;
-        CaseModel built{c.build()};
+        CaseModel<cases::MovingBaseBlock::Built> built{c.build()};
         if (v.base)
           built.model().set_rigid_velocity(
               built.b.base, {std::make_shared<ConstantHistory>(2.0), std::make_shared<ConstantHistory>(0.0)});
@@ -226,10 +228,6 @@ void bench_shaking_table(const Options& o) {
   constexpr int kWarmUp = 300;
   std::printf("Shaking-table slope (MC soil, rigid box, contact, uGIMP, FLIP 0.98, 0.75 cm), after %d steps\n",
               kWarmUp);
-  struct Holder {
-    cases::ShakingTable::Built b;
-    Model<2>& model() { return *b.model; }
-  };
   for (int t : o.threads) {
     omp_set_num_threads(t);
     std::size_t particles = 0, yielding = 0;
@@ -238,7 +236,7 @@ void bench_shaking_table(const Options& o) {
         [&] {
           cases::ShakingTable c;
           c.profile = o.profile;
-          return Holder{c.build()};
+          return CaseModel<cases::ShakingTable::Built>{c.build()};
         },
         [&](const Model<2>& m, int r) {
           particles = m.particles().size();

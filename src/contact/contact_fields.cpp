@@ -251,9 +251,9 @@ void ContactFields<Dim>::flag_cells_near_shared(const Grid<Dim>& grid, const Cel
         c[d] = n[d] + o[d];
         if (c[d] < 0 || c[d] >= grid.cells(d)) return;
       }
-      char& flag = near_shared_[cells.of_coords(c)];
-      if (!flag) near_cells_.push_back(cells.of_coords(c));
-      flag = 1;
+      const int cell = cells.of_coords(c);
+      if (!near_shared_[cell]) near_cells_.push_back(cell);
+      near_shared_[cell] = 1;
     });
   }
 }

@@ -53,23 +53,19 @@ class ScatterSchedule {
     }
   }
 
-  // Calls f(p) for every particle; slabs in parallel. For work that touches only the particle's own
-  // cell: slabs hold disjoint cells, so no colouring is needed.
-  template <class F>
-  void for_each_in_own_cell(F&& f) const {
-    const int slabs = static_cast<int>(begin_.size()) - 1;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int s = 0; s < slabs; ++s)
-      for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
-  }
-
-  // Calls f(slab, p) for every particle, slabs in parallel, each slab's particles in order.
+  // Calls f(slab, p) for every particle, slabs in parallel, each slab's particles in order. For work
+  // that touches only the particle's own cell: slabs hold disjoint cells, so no colouring is needed.
   template <class F>
   void for_each_in_own_cell_by_slab(F&& f) const {
     const int slabs = static_cast<int>(begin_.size()) - 1;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int s = 0; s < slabs; ++s)
       for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(s, order_[k]);
+  }
+  // The same without the slab.
+  template <class F>
+  void for_each_in_own_cell(F&& f) const {
+    for_each_in_own_cell_by_slab([&](int, int p) { f(p); });
   }
   int slabs() const { return static_cast<int>(begin_.size()) - 1; }
 

@@ -241,10 +241,11 @@ MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plasti
   return out;
 }
 
-MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, double plastic) const {
-  const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
-  const Sym trial = elastic_trial(stress, de, lambda, two_g);
-  if (trial[4] == 0.0 && trial[5] == 0.0) return integrate_plane<true>(trial, plastic);
+// From the elastic trial: the plane-strain closed form, else the principal directions of the eigen
+// solver. Without WithPlasticStrain the plastic strain tensor is left zero (only its shear is kept).
+template <bool WithPlasticStrain>
+MohrCoulomb::Result MohrCoulomb::integrate_trial(const Sym& trial, double plastic) const {
+  if (trial[4] == 0.0 && trial[5] == 0.0) return integrate_plane<WithPlasticStrain>(trial, plastic);
   const Principal pb = principal_stress(trial);
   const Eigen::Vector3d& sb = pb.value;
   ReturnTables softened;
@@ -255,9 +256,16 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
   out.kind = return_in_principal(*t, sb, result);
   out.stress = from_principal(result, pb.direction);
   const Eigen::Vector3d dep = plastic_principal_strain(sb - result);
-  out.plastic_strain = from_principal(dep, pb.direction);
+  if constexpr (WithPlasticStrain)
+    out.plastic_strain = from_principal(dep, pb.direction);
+  else
+    out.plastic_strain.setZero();
   out.shear_increment = equivalent_shear(dep);
   return out;
+}
+
+MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, double plastic) const {
+  return integrate_trial<true>(elastic_trial(stress, de, elastic_.lambda(), 2.0 * elastic_.shear()), plastic);
 }
 
 void MohrCoulomb::update_stress(const StressUpdate& b) const {
@@ -265,11 +273,9 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < b.count; ++k) {
     const int p = b.index[k];
-    const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
     // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-    const Result r = trial[4] == 0.0 && trial[5] == 0.0
-                         ? integrate_plane<false>(trial, b.plastic_strain[p])
-                         : integrate(b.stress[p], b.strain_increment[p], b.plastic_strain[p]);
+    const Result r =
+        integrate_trial<false>(elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g), b.plastic_strain[p]);
     b.stress[p] = r.stress;
     b.plastic_strain[p] += r.shear_increment;
     b.yield[p] = r.kind != Return::Elastic;

@@ -72,7 +72,9 @@ class MohrCoulomb : public Material {
   // The return of ordered trial principal stresses sb (the directions stay): sets `result`.
   Return return_in_principal(const ReturnTables& t, const Eigen::Vector3d& sb, Eigen::Vector3d& result) const;
   Eigen::Vector3d plastic_principal_strain(const Eigen::Vector3d& ds) const;
-  // integrate() from an elastic trial with xz = yz = 0 (every 2D update): closed-form directions.
+  // integrate() from an elastic trial, and its case xz = yz = 0 (every 2D update) in closed form.
+  template <bool WithPlasticStrain>
+  Result integrate_trial(const Sym& trial, double plastic) const;
   template <bool WithPlasticStrain>
   Result integrate_plane(const Sym& trial, double plastic) const;
 
