@@ -138,7 +138,14 @@ void Model<Dim>::grid_to_particles(const StepContext& c, bool remap) {
           // (P.v and P.affine are still the step's start values here.)
           const double share = constrained ? 0.0 : G.mass[i] > 0.0 ? std::min(1.0, N * P.mass[p] / G.mass[i]) : 1.0;
           if (N > 0.0 && share < 1.0 - 1e-9) alone = false;
-          Vec<Dim> vc = (1.0 - share) * *vi + share * (P.v[p] + P.affine[p] * dx);
+          // A node lighter than the particle itself is trusted with no more acceleration than the
+          // particle's own mass would give it: where two particles each reach a node with a sliver of
+          // weight, the share rule alone still took half of their force over that sliver of mass (a
+          // grain at rest at a flow front, touched by one arriving beside it, had its volume turn
+          // negative in two steps).
+          Vec<Dim> vn = *vi;
+          if (!constrained && G.mass[i] < P.mass[p]) vn -= (dt * (1.0 - G.mass[i] / P.mass[p])) * *ai;
+          Vec<Dim> vc = (1.0 - share) * vn + share * (P.v[p] + P.affine[p] * dx);
           const unsigned held_dofs = G.fixity(i);  // a held component is the edge's: the gradient must see it
           for (int d = 0; d < Dim; ++d)
             if (held_dofs >> d & 1) vc[d] = (*vi)[d];
