@@ -49,9 +49,13 @@ local width = 0.2                               -- m, the column
 local height = mpm.param("height", 0.1)         -- m: aspect ratio a = height / width (experiment 0.5)
 local phi = mpm.param("friction", 19.8)         -- degrees (experiment 19.8)
 local experiment = math.abs(height - 0.1) < 1e-12 and math.abs(phi - 19.8) < 1e-12
+if not (phi > 0 and phi < 90) then error("--set friction must lie between 0 and 90 degrees, got " .. phi, 0) end
+if not (height > 0) then error("--set height must be positive, got " .. height, 0) end
 -- The domain: room for a normalised run-out of 5 a (Lube et al. 2005 give 1.2 a for sand; the aluminium
--- bars ran 2.5 a) and for the lifted gate (it rises 2 heights above its 1.2 heights).
-local length = math.max(0.7, width * (1 + 5 * height / width))
+-- bars ran 2.5 a) and for the lifted gate (it rises 2 heights above its 1.2 heights). A weak material runs
+-- farther: the front comes to rest about height / tan(phi) beyond the column (0.48 m for the experiment,
+-- 0.51 and 0.81 m computed for a = 1 and 2 at phi = 30 deg), and the grid gives it 1.5 times that.
+local length = math.max(0.7, width * (1 + 5 * height / width), width + 1.5 * height / math.tan(math.rad(phi)))
 local top = math.max(0.35, 3.5 * height)
 local rho, young, poisson = 2650, 0.84e6, 0.3
 local lift_speed = 1.0                          -- m/s

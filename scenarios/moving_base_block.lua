@@ -28,13 +28,18 @@ end
 if contact == "smooth" then friction = 0 end
 local g = 9.81
 
--- The base spans 2.5 m left of the block and 1 m right of it, so the block keeps its support for
--- 1 s of base motion whatever the variant.
-local m = mpm.model{ domain = {{-2.7, -0.3}, {4.3, 1.3}}, cell = cell, gravity = {0, -g} }
+if not (duration > 0) then error("--set duration must be positive, got " .. duration, 0) end
+-- The base reaches 0.5 m plus its travel (at least 2 m) behind the block and 1 m ahead of it, so the
+-- block keeps its support whatever the variant, and the grid holds the base wherever it goes.
+local reach = math.max(2.0, math.abs(speed) * duration)
+local base_lo, base_hi = -0.5 - reach, 2.0
+local lo, hi = base_lo - 0.2, base_hi + 0.3 + reach
+if speed < 0 then base_lo, base_hi, lo, hi = -1.0, 1.5 + reach, -1.0 - 0.3 - reach, 1.5 + reach + 0.2 end
+local m = mpm.model{ domain = {{lo, -0.3}, {hi, 1.3}}, cell = cell, gravity = {0, -g} }
 local elastic = mpm.material.linear_elastic{ density = 10e3 / g, young = 10e6, poisson = 0.3 }
 local block = m:body{ name = "block", material = elastic, shape = mpm.shape.rectangle{ 0, 0, 1, 1 }, ppc = 2 }
 -- The base follows `speed` in the dynamic phase; the gravity phase holds every rigid body at rest.
-local base = m:rigid{ name = "base", shape = mpm.shape.rectangle{ -2.5, -cell, 2.0, 0 }, ppc = 1,
+local base = m:rigid{ name = "base", shape = mpm.shape.rectangle{ base_lo, -cell, base_hi, 0 }, ppc = 1,
                       velocity = {speed, 0} }
 if contact ~= "none" then m:contact{ block, base, friction = friction } end
 print(string.format("block: %d particles; base: %d prescribed-velocity particles; contact: %s%s",
