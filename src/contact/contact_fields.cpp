@@ -133,12 +133,13 @@ int ContactFields<Dim>::prescribe_rigid_velocities(Particles<Dim>& particles, co
   const int n = static_cast<int>(particles.size());
   auto& P = particles;
   int leaving = n;
+  const DomainBox<Dim> domain(grid);
 #pragma omp parallel for schedule(static) reduction(min : leaving)
   for (int p = 0; p < n; ++p) {
     const int b = P.body[p];
     if (!body_rigid_[b]) continue;
     P.v[p] = motion_[b].current;
-    if (!inside_domain(grid, Vec<Dim>(P.x[p] + c.dt * P.v[p]))) leaving = std::min(leaving, p);
+    if (!domain.contains(Vec<Dim>(P.x[p] + c.dt * P.v[p]))) leaving = std::min(leaving, p);
   }
   return leaving;
 }

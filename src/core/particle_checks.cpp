@@ -28,12 +28,15 @@ void Model<Dim>::check_particles() const {
   const auto& P = particles_;
   // One pass: the first invalid particle, and the first one outside (a non-finite one is reported first).
   int bad = n, outside = n;
+  const DomainBox<Dim> domain(grid_);
 #pragma omp parallel for schedule(static) reduction(min : bad, outside)
   for (int p = 0; p < n; ++p) {
-    const bool finite = P.x[p].allFinite() && P.v[p].allFinite() && P.stress[p].allFinite() &&
-                        std::isfinite(P.volume[p]) && P.volume[p] > 0.0;
-    if (!finite) bad = std::min(bad, p);
-    if (!inside_domain(grid_, P.x[p])) outside = std::min(outside, p);
+    // Without branches: 0 * a is 0 for every finite a and NaN for an infinite or NaN one, so the sum
+    // of the zeros is 0 exactly when every value is finite.
+    const double zeros = (0.0 * P.x[p]).sum() + (0.0 * P.v[p]).sum() + (0.0 * P.stress[p]).sum() + 0.0 * P.volume[p];
+    const bool valid = (zeros == 0.0) & (P.volume[p] > 0.0);
+    if (!valid) bad = std::min(bad, p);
+    if (!domain.contains(P.x[p])) outside = std::min(outside, p);
   }
   if (bad < n) {
     std::ostringstream os;

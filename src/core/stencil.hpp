@@ -17,13 +17,24 @@ struct Stencil {
   double dw[Dim][K];  // per-axis derivatives (1/m)
 };
 
+// The grid's domain (edges included, ghost layers not), taken once for a loop over particles: the
+// grid's bounds are computed, not stored, and asking for them per particle cost a call each time.
+template <int Dim>
+struct DomainBox {
+  explicit DomainBox(const Grid<Dim>& grid) : lo(grid.domain_lower()), hi(grid.domain_upper()) {}
+  // True while x lies in the domain; false for a NaN coordinate.
+  bool contains(const Vec<Dim>& x) const {
+    bool in = true;
+    for (int d = 0; d < Dim; ++d) in &= (x[d] >= lo[d]) & (x[d] <= hi[d]);
+    return in;
+  }
+  Vec<Dim> lo, hi;
+};
+
 // True while the particle's centre lies in the grid's domain (edges included, ghost layers not).
 template <int Dim>
 bool inside_domain(const Grid<Dim>& grid, const Vec<Dim>& x) {
-  const Vec<Dim> lo = grid.domain_lower(), hi = grid.domain_upper();
-  for (int d = 0; d < Dim; ++d)
-    if (!(x[d] >= lo[d] && x[d] <= hi[d])) return false;
-  return true;
+  return DomainBox<Dim>(grid).contains(x);
 }
 
 // Per-axis first node and weights for a particle at x with uGIMP half-width l (cell units).
@@ -41,8 +52,15 @@ bool make_stencil(const Grid<Dim>& grid, const Vec<Dim>& x, double l, Stencil<Di
     int first = Shape::first_node(xi, l);
     if (first < 0) first = 0;
     if (first > cells + 1 - Shape::K) first = cells + 1 - Shape::K;
-    Shape::eval(xi, l, first, st.w[d], st.dw[d]);
-    for (int k = 0; k < Shape::K; ++k) st.dw[d][k] *= inv_h;
+    // Evaluated into locals and stored once: scaling the derivatives in place re-read them straight
+    // after their scalar stores, and the wider load that could not take them from the store buffer
+    // stalled (over half of this loop's time).
+    double w[Shape::K], dw[Shape::K];
+    Shape::eval(xi, l, first, w, dw);
+    for (int k = 0; k < Shape::K; ++k) {
+      st.w[d][k] = w[k];
+      st.dw[d][k] = dw[k] * inv_h;
+    }
     st.base += first * grid.stride(d);
   }
   return true;

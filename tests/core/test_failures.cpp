@@ -33,27 +33,32 @@ TEST_CASE("a particle leaving the grid stops the run and names it", "[core][fail
 
 namespace {
 
-// A material that turns one particle's stress into NaN, as a broken constitutive update would.
+// A material that turns one particle's stress into NaN or an infinity, as a broken constitutive
+// update would.
 class BrokenMaterial : public LinearElastic {
  public:
-  explicit BrokenMaterial(int victim) : LinearElastic(1000.0, 1e6, 0.3), victim_(victim) {}
+  BrokenMaterial(int victim, double value) : LinearElastic(1000.0, 1e6, 0.3), victim_(victim), value_(value) {}
   void update_stress(const StressUpdate& b) const override {
     LinearElastic::update_stress(b);
     for (int k = 0; k < b.count; ++k)
-      if (b.index[k] == victim_) b.stress[victim_][1] = std::numeric_limits<double>::quiet_NaN();
+      if (b.index[k] == victim_) b.stress[victim_][1] = value_;
   }
 
  private:
   int victim_;
+  double value_;
 };
 
 }  // namespace
 
 TEST_CASE("a NaN in a particle's state stops the run and names the particle", "[core][failure]") {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double value = GENERATE_COPY(std::numeric_limits<double>::quiet_NaN(), inf, -inf);
+  CAPTURE(value);
   ModelSettings<2> s;
   s.cell = 0.1;
   Model<2> m(s);
-  const int mat = m.add_material(std::make_shared<BrokenMaterial>(17));
+  const int mat = m.add_material(std::make_shared<BrokenMaterial>(17, value));
   const int body = m.add_body("soil", 2);
   m.fill_box(body, mat, Vec<2>(0.2, 0.2), Vec<2>(0.6, 0.6));
   const int id = m.particles().id[17];
