@@ -262,6 +262,8 @@ class Model {
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;
   mutable std::vector<int> index_of_id_;  // rebuilt on demand after a sort
+  std::vector<int> sort_key_, sort_start_, sort_order_;
+  PermuteBuffer sort_buffer_;
   StageTimer timer_;
 
   TimeStepControl time_step_;

@@ -10,15 +10,18 @@ void Model<Dim>::sort_particles() {
   const int n = static_cast<int>(particles_.size());
   const int cells = grid_.cell_count();
   const auto& index = support_.cells;
-  std::vector<int> key(n);
+  auto& key = sort_key_;
+  auto& start = sort_start_;
+  auto& order = sort_order_;
+  key.resize(n);
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) key[p] = index.of(particles_.x[p]);
-  std::vector<int> start(cells + 1, 0);
+  start.assign(cells + 1, 0);
   for (int p = 0; p < n; ++p) ++start[key[p] + 1];
   for (int c = 0; c < cells; ++c) start[c + 1] += start[c];
-  std::vector<int> order(n);
+  order.resize(n);
   for (int p = 0; p < n; ++p) order[start[key[p]]++] = p;
-  particles_.permute(order);
+  particles_.permute(order, sort_buffer_);
   material_lists_valid_ = false;
   index_of_id_.clear();
 }

@@ -1,5 +1,6 @@
 #include "particles.hpp"
 
+#include <new>
 #include <type_traits>
 
 namespace seismpm {
@@ -13,13 +14,17 @@ T zero() {
     return T::Zero();
 }
 
+// Copies the reordered field into the buffer, then back: no allocation, no zeroing.
 template <class T>
-void apply_order(std::vector<T>& field, const std::vector<int>& order) {
-  std::vector<T> scratch(field.size());
+void apply_order(std::vector<T>& field, const std::vector<int>& order, PermuteBuffer& buffer) {
+  static_assert(std::is_trivially_destructible_v<T> && alignof(T) <= 64);
   const int n = static_cast<int>(order.size());
+  std::byte* raw = buffer.storage(sizeof(T) * order.size());
 #pragma omp parallel for schedule(static)
-  for (int k = 0; k < n; ++k) scratch[k] = field[order[k]];
-  field.swap(scratch);
+  for (int k = 0; k < n; ++k) ::new (raw + sizeof(T) * k) T(field[order[k]]);
+  const T* scratch = std::launder(reinterpret_cast<const T*>(raw));
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k) field[k] = scratch[k];
 }
 }  // namespace
 
@@ -40,8 +45,8 @@ std::size_t Particles<Dim>::add(const Vec<Dim>& position, double particle_mass, 
 }
 
 template <int Dim>
-void Particles<Dim>::permute(const std::vector<int>& order) {
-  for_each_member([&order](auto& member) { apply_order(member, order); });
+void Particles<Dim>::permute(const std::vector<int>& order, PermuteBuffer& buffer) {
+  for_each_member([&](auto& member) { apply_order(member, order, buffer); });
 }
 
 template <int Dim>
