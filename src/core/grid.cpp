@@ -67,13 +67,17 @@ Vec<Dim> Grid<Dim>::node_position(int node) const {
 }
 
 template <int Dim>
-void Grid<Dim>::reset() {
+void Grid<Dim>::reset(bool kinematics) {
   const int n = node_count();
 #pragma omp parallel for schedule(static)
   for (int i = 0; i < n; ++i) {
     mass[i] = 0.0;
     momentum[i].setZero();
     force[i].setZero();
+    if (kinematics) {
+      velocity[i].setZero();
+      acceleration[i].setZero();
+    }
   }
 }
 

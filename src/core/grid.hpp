@@ -43,8 +43,9 @@ class Grid {
   std::array<int, Dim> node_coords(int node) const;
   Vec<Dim> node_position(int node) const;
 
-  // Zeroes mass, momentum and force before a transfer.
-  void reset();
+  // Zeroes mass, momentum and force before a transfer, and with `kinematics` velocity and
+  // acceleration too (every field: what a step over the active nodes only takes for granted).
+  void reset(bool kinematics = false);
 
   // Holds the given degrees of freedom at zero on every node of a domain edge and of the ghost
   // layers beyond it.

@@ -318,9 +318,12 @@ void Model<Dim>::step_with(const StepContext& c) {
   timer_.start(settings_.profile);
   for (auto& f : fixes_) f->before_step(*this, c);
   if constexpr (Contact) prescribe_rigid_velocities(c);  // v_R(t) on the rigid particles
-  grid_.reset();
+  // Without fixes, nothing writes to a node no particle reaches, so the grid loops can skip those.
+  const bool limited = fixes_.empty();
+  reset_grid(limited);
+  active_valid_ = false;  // until the step completes: a step that throws leaves the grid unknown
   timer_.lap(Stage::Reset);
-  locate_particles<Shape>();
+  locate_particles<Shape>(limited);
   timer_.lap(Stage::Stencils);
   if constexpr (Contact) {
     contact_.template mark_shared_nodes<Shape>(particles_, grid_, support_, c);
@@ -342,6 +345,7 @@ void Model<Dim>::step_with(const StepContext& c) {
   timer_.lap(Stage::Remap);
   update_stress<Shape, Contact>(c);
   timer_.lap(Stage::Stress);
+  active_valid_ = limited;
   finish_step(c);
   timer_.lap(Stage::Checks);
 }
@@ -372,12 +376,40 @@ void Model<Dim>::prescribe_rigid_velocities(const StepContext& c) {
   }
 }
 
-// Shape functions at the start-of-step positions, each particle's cell and the scatter schedule.
+// Zeroes what the last step wrote: where it reached only some nodes (and everything else is zero),
+// those; else the whole grid, velocities too when this step will visit only some nodes.
+template <int Dim>
+void Model<Dim>::reset_grid(bool limited) {
+  if (!active_valid_) {
+    grid_.reset(limited);
+    return;
+  }
+  auto& G = grid_;
+  active_.for_each_range([&](int first, int end) {
+    for (int i = first; i < end; ++i) {
+      G.mass[i] = 0.0;
+      G.momentum[i].setZero();
+      G.force[i].setZero();
+      G.velocity[i].setZero();
+      G.acceleration[i].setZero();
+    }
+  });
+}
+
+// Shape functions at the start-of-step positions, each particle's cell and the scatter schedule;
+// with `limited`, the nodes they reach (else every node).
 template <int Dim>
 template <class Shape>
-void Model<Dim>::locate_particles() {
+void Model<Dim>::locate_particles(bool limited) {
   const int outside = support_.template locate<Shape>(grid_, particles_);
   if (outside < static_cast<int>(particles_.size())) fail(outside, "is outside the grid");
+  if (limited) {
+    // A particle in cell c reaches nodes c .. c + 1 (linear) or c - 1 .. c + 2 (uGIMP) per axis.
+    constexpr int lo = Shape::K == 2 ? 0 : -1, hi = Shape::K == 2 ? 1 : 2;
+    active_.build(grid_, particles_.x, lo, hi);
+  } else {
+    active_.cover(grid_);
+  }
 }
 
 template <int Dim>

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "active_nodes.hpp"
 #include "body.hpp"
 #include "contact/contact_fields.hpp"
 #include "diagnostics.hpp"
@@ -192,8 +193,9 @@ class Model {
   template <class Shape, bool Contact>
   void step_with(const StepContext& c);
   void prescribe_rigid_velocities(const StepContext& c);
+  void reset_grid(bool limited);
   template <class Shape>
-  void locate_particles();
+  void locate_particles(bool limited);
   template <class Shape, bool Contact>
   void particles_to_grid();
   template <bool Contact>
@@ -256,6 +258,10 @@ class Model {
 
   // Per-step scratch.
   ParticleSupport<Dim> support_;
+  // The nodes the step's particles reach; the whole-grid loops walk only these. `active_valid_`: every
+  // node outside the last step's spans is zero in every field (the spans were built, not covering).
+  ActiveNodes<Dim> active_;
+  bool active_valid_ = false;
   std::vector<Sym> strain_increment_;
   std::vector<Eigen::Vector3d> spin_;  // dt skw(L) as (w_xy, w_yz, w_xz)
   std::vector<double> cell_volume_, cell_dilation_;

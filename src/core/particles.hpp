@@ -23,7 +23,7 @@ class PermuteBuffer {
   // At least `bytes` of storage aligned for any particle field; valid until the next call.
   std::byte* storage(std::size_t bytes) {
     if (bytes > size_) {
-      data_.reset(static_cast<std::byte*>(::operator new(bytes, std::align_val_t{kAlign})));
+      data_.reset(static_cast<std::byte*>(::operator new (bytes, std::align_val_t{kAlign})));
       size_ = bytes;
     }
     return data_.get();
@@ -32,7 +32,7 @@ class PermuteBuffer {
  private:
   static constexpr std::size_t kAlign = 64;
   struct Free {
-    void operator()(std::byte* p) const { ::operator delete(p, std::align_val_t{kAlign}); }
+    void operator()(std::byte* p) const { ::operator delete (p, std::align_val_t{kAlign}); }
   };
   std::unique_ptr<std::byte, Free> data_;
   std::size_t size_ = 0;

@@ -41,20 +41,20 @@ void Model<Dim>::particles_to_grid() {
 template <int Dim>
 template <bool Contact>
 void Model<Dim>::update_nodal_velocities(const StepContext& c) {
-  const int n = grid_.node_count();
   const double dt = c.dt, eps = mass_threshold_;
   auto& G = grid_;
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < n; ++i) {
-    if (G.mass[i] > eps) {
-      const double inv_m = 1.0 / G.mass[i];
-      G.acceleration[i] = G.force[i] * inv_m;
-      G.velocity[i] = G.momentum[i] * inv_m + dt * G.acceleration[i];
-    } else {
-      G.acceleration[i].setZero();
-      G.velocity[i].setZero();
+  active_.for_each_range([&](int first, int end) {
+    for (int i = first; i < end; ++i) {
+      if (G.mass[i] > eps) {
+        const double inv_m = 1.0 / G.mass[i];
+        G.acceleration[i] = G.force[i] * inv_m;
+        G.velocity[i] = G.momentum[i] * inv_m + dt * G.acceleration[i];
+      } else {
+        G.acceleration[i].setZero();
+        G.velocity[i].setZero();
+      }
     }
-  }
+  });
   if constexpr (Contact) contact_.update_velocities(dt, eps);
 }
 
@@ -86,11 +86,10 @@ void Model<Dim>::grid_to_particles(const StepContext& c, bool remap) {
   auto& G = grid_;
   const auto& S = contact_.nodes();
   const HeldEdges<Dim> held(G);
-  if (remap) {
-    const int nn = G.node_count();
-#pragma omp parallel for schedule(static)
-    for (int i = 0; i < nn; ++i) G.momentum[i].setZero();
-  }
+  if (remap)
+    active_.for_each_range([&](int first, int end) {
+      for (int i = first; i < end; ++i) G.momentum[i].setZero();
+    });
   auto scatter = [&](int p) {
     const Vec<Dim> mv = P.mass[p] * P.v[p];
     const Mat<Dim> mC = apic ? Mat<Dim>(P.mass[p] * P.affine[p]) : Mat<Dim>::Zero();
@@ -208,10 +207,11 @@ template <int Dim>
 template <class Shape, bool Contact>
 void Model<Dim>::remap_momentum() {
   auto& G = grid_;
-  const int nn = G.node_count();
   const double eps = mass_threshold_;
-#pragma omp parallel for schedule(static)
-  for (int i = 0; i < nn; ++i) G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
+  active_.for_each_range([&](int first, int end) {
+    for (int i = first; i < end; ++i)
+      G.velocity[i] = G.mass[i] > eps ? Vec<Dim>(G.momentum[i] / G.mass[i]) : Vec<Dim>::Zero();
+  });
   if constexpr (Contact)
     contact_.template remap_momentum<Shape>(particles_, G, support_, eps, settings_.transfer == Transfer::Apic);
 }

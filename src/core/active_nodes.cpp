@@ -1,0 +1,94 @@
+#include "active_nodes.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+namespace seismpm {
+
+template <int Dim>
+void ActiveNodes<Dim>::build(const Grid<Dim>& grid, const std::vector<Vec<Dim>>& x, int lo, int hi) {
+  row_length_ = grid.nodes(0);
+  int cell_rows = 1, node_rows = 1;
+  for (int d = 1; d < Dim; ++d) cell_rows *= grid.cells(d), node_rows *= grid.nodes(d);
+  const int threads = omp_get_max_threads();
+  cell_min_.assign(static_cast<std::size_t>(threads) * cell_rows, INT_MAX);
+  cell_max_.assign(static_cast<std::size_t>(threads) * cell_rows, -1);
+  const Vec<Dim> origin = grid.origin();
+  const double inv_h = 1.0 / grid.cell();
+  const int n = static_cast<int>(x.size());
+  // Each thread marks its own copy: the lowest and highest x cell per row of cells.
+#pragma omp parallel
+  {
+    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
+    int* mn = cell_min_.data() + t * cell_rows;
+    int* mx = cell_max_.data() + t * cell_rows;
+#pragma omp for schedule(static)
+    for (int p = 0; p < n; ++p) {
+      int c[Dim];
+      for (int d = 0; d < Dim; ++d)  // the cell CellIndex::of gives
+        c[d] = std::clamp(static_cast<int>(std::floor((x[p][d] - origin[d]) * inv_h)), 0, grid.cells(d) - 1);
+      int row = 0;
+      for (int d = Dim - 1; d >= 1; --d) row = row * grid.cells(d) + c[d];
+      mn[row] = std::min(mn[row], c[0]);
+      mx[row] = std::max(mx[row], c[0]);
+    }
+  }
+  for (int t = 1; t < threads; ++t)
+    for (int r = 0; r < cell_rows; ++r) {
+      cell_min_[r] = std::min(cell_min_[r], cell_min_[static_cast<std::size_t>(t) * cell_rows + r]);
+      cell_max_[r] = std::max(cell_max_[r], cell_max_[static_cast<std::size_t>(t) * cell_rows + r]);
+    }
+  // A row of nodes j is reached from the rows of cells j - hi .. j - lo (along every axis but x).
+  begin_.assign(node_rows, 0);
+  end_.assign(node_rows, 0);
+  for (int r = 0; r < node_rows; ++r) {
+    int j[Dim] = {};  // the row's node indices along axes 1 .. Dim-1
+    for (int d = 1, rest = r; d < Dim; ++d) j[d] = rest % grid.nodes(d), rest /= grid.nodes(d);
+    int first = INT_MAX, last = -1;
+    int o[Dim] = {};  // cell row offset per axis, lo .. hi
+    for (int d = 1; d < Dim; ++d) o[d] = lo;
+    for (;;) {
+      bool inside = true;
+      int row = 0;
+      for (int d = Dim - 1; d >= 1; --d) {
+        const int c = j[d] - o[d];
+        inside = inside && c >= 0 && c < grid.cells(d);
+        row = row * grid.cells(d) + c;
+      }
+      if (inside && cell_max_[row] >= 0) {
+        first = std::min(first, cell_min_[row] + lo);
+        last = std::max(last, cell_max_[row] + hi);
+      }
+      int d = 1;
+      while (d < Dim && ++o[d] > hi) o[d] = lo, ++d;
+      if (d == Dim) break;
+    }
+    if (last >= 0) {
+      begin_[r] = std::max(first, 0);
+      end_[r] = std::min(last, row_length_ - 1) + 1;
+    }
+  }
+}
+
+template <int Dim>
+void ActiveNodes<Dim>::cover(const Grid<Dim>& grid) {
+  row_length_ = grid.nodes(0);
+  const int node_rows = grid.node_count() / row_length_;
+  begin_.assign(node_rows, 0);
+  end_.assign(node_rows, row_length_);
+}
+
+template <int Dim>
+long ActiveNodes<Dim>::count() const {
+  long n = 0;
+  for (std::size_t r = 0; r < begin_.size(); ++r) n += end_[r] - begin_[r];
+  return n;
+}
+
+template class ActiveNodes<2>;
+template class ActiveNodes<3>;
+
+}  // namespace seismpm
