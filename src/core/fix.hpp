@@ -29,6 +29,11 @@ class Fix {
   virtual void nodal_velocities(Model<Dim>&, const StepContext&, VelocityStage) {}
   // After the stress update and the clock, when the step is complete.
   virtual void after_step(Model<Dim>&, const StepContext&) {}
+  // True when the fix writes to no grid node but those carrying particle mass (local damping): the
+  // step may then keep its grid loops to the nodes the particles reach (Model::active_nodes). A fix
+  // that may write elsewhere (an edge boundary's reaction on an empty edge node) keeps them on the
+  // whole grid.
+  virtual bool writes_only_nodes_with_mass() const { return false; }
 };
 
 }  // namespace seismpm

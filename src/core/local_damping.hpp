@@ -13,6 +13,7 @@ class LocalDamping : public Fix<Dim> {
   explicit LocalDamping(double alpha);
   std::string_view name() const override { return "local_damping"; }
   void nodal_forces(Model<Dim>& model, const StepContext& c) override;
+  bool writes_only_nodes_with_mass() const override { return true; }
   double alpha() const { return alpha_; }
   void set_alpha(double alpha);
 

@@ -318,8 +318,10 @@ void Model<Dim>::step_with(const StepContext& c) {
   timer_.start(settings_.profile);
   for (auto& f : fixes_) f->before_step(*this, c);
   if constexpr (Contact) prescribe_rigid_velocities(c);  // v_R(t) on the rigid particles
-  // Without fixes, nothing writes to a node no particle reaches, so the grid loops can skip those.
-  const bool limited = fixes_.empty();
+  // Unless a fix may write to other nodes, nothing writes to a node no particle reaches, so the grid
+  // loops can skip those.
+  const bool limited =
+      std::all_of(fixes_.begin(), fixes_.end(), [](const auto& f) { return f->writes_only_nodes_with_mass(); });
   reset_grid(limited);
   active_valid_ = false;  // until the step completes: a step that throws leaves the grid unknown
   timer_.lap(Stage::Reset);

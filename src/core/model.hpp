@@ -151,6 +151,9 @@ class Model {
   const ModelSettings<Dim>& settings() const { return settings_; }
   Grid<Dim>& grid() { return grid_; }
   const Grid<Dim>& grid() const { return grid_; }
+  // The nodes this step's particles reach, as spans per row of nodes (every node when a fix may
+  // write to others); valid from the particles' location to the end of the step.
+  const ActiveNodes<Dim>& active_nodes() const { return active_; }
   Particles<Dim>& particles() { return particles_; }
   const Particles<Dim>& particles() const { return particles_; }
   const std::vector<Body>& bodies() const { return bodies_; }
