@@ -109,6 +109,6 @@ TEST_CASE("a step over the active nodes equals a step over the whole grid", "[co
       REQUIRE(ga.velocity[i] == gb.velocity[i]);
     }
   }
-  CHECK(limited->particles().x[0][0] > 0.6);  // the block has moved on by many cells
+  CHECK(limited->particles().x[0][0] > 0.6);                                  // the block has moved on by many cells
   CHECK(limited->active_nodes().count() < limited->grid().node_count() / 4);  // the limited one was
 }
