@@ -19,6 +19,7 @@ template <class T>
 void apply_order(std::vector<T>& field, const std::vector<int>& order, PermuteBuffer& buffer) {
   static_assert(std::is_trivially_destructible_v<T> && alignof(T) <= 64);
   const int n = static_cast<int>(order.size());
+  if (n == 0) return;
   std::byte* raw = buffer.storage(sizeof(T) * order.size());
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k) ::new (raw + sizeof(T) * k) T(field[order[k]]);
