@@ -14,11 +14,12 @@ namespace seismpm {
 
 namespace {
 
-// Calls f(node, offset) for every node at offsets from..to (per axis) of `base` that lies in the grid.
+// Calls f(node, offset) for every node at offsets from[d]..to[d] along each axis d of `base` that lies
+// in the grid.
 template <int Dim, class F>
-void for_each_node_around(const Grid<Dim>& grid, const std::array<int, Dim>& base, int from, int to, F&& f) {
-  std::array<int, Dim> o;
-  o.fill(from);
+void for_each_node_in(const Grid<Dim>& grid, const std::array<int, Dim>& base, const std::array<int, Dim>& from,
+                      const std::array<int, Dim>& to, F&& f) {
+  std::array<int, Dim> o = from;
   for (;;) {
     int i = 0;
     bool inside = true;
@@ -29,9 +30,18 @@ void for_each_node_around(const Grid<Dim>& grid, const std::array<int, Dim>& bas
     }
     if (inside) f(i, o);
     int d = 0;
-    while (d < Dim && ++o[d] > to) o[d] = from, ++d;
+    while (d < Dim && ++o[d] > to[d]) o[d] = from[d], ++d;
     if (d == Dim) break;
   }
+}
+
+// The same with offsets from..to along every axis.
+template <int Dim, class F>
+void for_each_node_around(const Grid<Dim>& grid, const std::array<int, Dim>& base, int from, int to, F&& f) {
+  std::array<int, Dim> lo, hi;
+  lo.fill(from);
+  hi.fill(to);
+  for_each_node_in<Dim>(grid, base, lo, hi, f);
 }
 
 // The nodes a deformable particle in a cell can reach: cell nodes -1 .. +2 for uGIMP, 0 .. +1 for
@@ -204,7 +214,11 @@ int ContactFields<Dim>::mark_cell_fields(const Particles<Dim>& particles, const 
 }
 
 // Every node each cell's fields reach; returns a node that more than kSlots fields meet at, or -1.
-// Slabs of one colour are 4 cells apart: the nodes they mark never meet.
+// Slabs of one colour are 4 cells apart: the nodes they mark never meet. A cell that follows its left
+// neighbour in the list with the same fields marks only its last column of nodes: the neighbour has
+// marked the others with those fields already, so the marks, and the order in which nodes are first
+// marked, are those of marking every node (the slab's particles are sorted by cell, so most cells
+// follow their left neighbour).
 template <int Dim>
 template <class Shape>
 int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
@@ -216,16 +230,25 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
     for (int sl = colour; sl < slabs; sl += 2) {
       auto& touched = slab_nodes_[sl];
       touched.clear();
+      std::array<int, Dim> last{};
+      const FieldSet* last_fields = nullptr;
       for (const int c : slab_cells_[sl]) {
         const FieldSet& fs = cell_fields_[c];
         const auto coords = cells.coords(c);
+        bool follows = last_fields && *last_fields == fs && coords[0] == last[0] + 1;
+        for (int d = 1; d < Dim; ++d) follows = follows && coords[d] == last[d];
+        last = coords;
+        last_fields = &fs;
         for (const int f : fs) {
           if (f < 0) break;
           const bool rigid = rules_.rigid(f);
-          for_each_node_around<Dim>(grid, coords, rigid ? 0 : kReachLo<Shape>, rigid ? 1 : kReachHi<Shape>,
-                                    [&](int i, const std::array<int, Dim>&) {
-                                      if (!shared_.mark(i, f, touched)) overflow.store(i, std::memory_order_relaxed);
-                                    });
+          std::array<int, Dim> lo, hi;
+          lo.fill(rigid ? 0 : kReachLo<Shape>);
+          hi.fill(rigid ? 1 : kReachHi<Shape>);
+          if (follows) lo[0] = hi[0];
+          for_each_node_in<Dim>(grid, coords, lo, hi, [&](int i, const std::array<int, Dim>&) {
+            if (!shared_.mark(i, f, touched)) overflow.store(i, std::memory_order_relaxed);
+          });
         }
       }
     }
