@@ -25,16 +25,31 @@ void ActiveNodes<Dim>::build(const Grid<Dim>& grid, const std::vector<Vec<Dim>>&
     const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
     int* mn = cell_min_.data() + t * cell_rows;
     int* mx = cell_max_.data() + t * cell_rows;
-#pragma omp for schedule(static)
+    // The current row's extremes stay in registers until the row changes: particles sorted by cell
+    // come row by row, and updating the arrays per particle chained every update through memory.
+    int run_row = -1, run_min = 0, run_max = 0;
+    auto flush = [&] {
+      if (run_row < 0) return;
+      mn[run_row] = std::min(mn[run_row], run_min);
+      mx[run_row] = std::max(mx[run_row], run_max);
+    };
+#pragma omp for schedule(static) nowait
     for (int p = 0; p < n; ++p) {
       int c[Dim];
       for (int d = 0; d < Dim; ++d)  // the cell CellIndex::of gives
         c[d] = std::clamp(static_cast<int>(std::floor((x[p][d] - origin[d]) * inv_h)), 0, grid.cells(d) - 1);
       int row = 0;
       for (int d = Dim - 1; d >= 1; --d) row = row * grid.cells(d) + c[d];
-      mn[row] = std::min(mn[row], c[0]);
-      mx[row] = std::max(mx[row], c[0]);
+      if (row != run_row) {
+        flush();
+        run_row = row;
+        run_min = run_max = c[0];
+      } else {
+        run_min = std::min(run_min, c[0]);
+        run_max = std::max(run_max, c[0]);
+      }
     }
+    flush();
   }
   for (int t = 1; t < threads; ++t)
     for (int r = 0; r < cell_rows; ++r) {
