@@ -44,13 +44,6 @@ void for_each_node_around(const Grid<Dim>& grid, const std::array<int, Dim>& bas
   for_each_node_in<Dim>(grid, base, lo, hi, f);
 }
 
-// The nodes a deformable particle in a cell can reach: cell nodes -1 .. +2 for uGIMP, 0 .. +1 for
-// linear shapes.
-template <class Shape>
-constexpr int kReachLo = Shape::K == 2 ? 0 : -1;
-template <class Shape>
-constexpr int kReachHi = Shape::K == 2 ? 1 : 2;
-
 }  // namespace
 
 // ---------------------------------------------------------------- building
@@ -243,8 +236,8 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
           if (f < 0) break;
           const bool rigid = rules_.rigid(f);
           std::array<int, Dim> lo, hi;
-          lo.fill(rigid ? 0 : kReachLo<Shape>);
-          hi.fill(rigid ? 1 : kReachHi<Shape>);
+          lo.fill(rigid ? 0 : Shape::kReachLo);
+          hi.fill(rigid ? 1 : Shape::kReachHi);
           if (follows) lo[0] = hi[0];
           for_each_node_in<Dim>(grid, coords, lo, hi, [&](int i, const std::array<int, Dim>&) {
             if (!shared_.mark(i, f, touched)) overflow.store(i, std::memory_order_relaxed);
@@ -269,7 +262,7 @@ void ContactFields<Dim>::flag_cells_near_shared(const Grid<Dim>& grid, const Cel
   near_cells_.clear();
   for (int k = 0; k < shared_.count(); ++k) {
     const auto n = grid.node_coords(shared_.node(k));
-    for_each_node_around<Dim>(grid, n, -kReachHi<Shape>, -kReachLo<Shape>, [&](int, const std::array<int, Dim>& o) {
+    for_each_node_around<Dim>(grid, n, -Shape::kReachHi, -Shape::kReachLo, [&](int, const std::array<int, Dim>& o) {
       std::array<int, Dim> c;
       for (int d = 0; d < Dim; ++d) {
         c[d] = n[d] + o[d];

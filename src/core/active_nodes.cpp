@@ -4,20 +4,18 @@
 
 #include <algorithm>
 #include <climits>
-#include <cmath>
 
 namespace seismpm {
 
 template <int Dim>
-void ActiveNodes<Dim>::build(const Grid<Dim>& grid, const std::vector<Vec<Dim>>& x, int lo, int hi) {
+void ActiveNodes<Dim>::build(const Grid<Dim>& grid, const CellIndex<Dim>& cells, const std::vector<Vec<Dim>>& x, int lo,
+                             int hi) {
   row_length_ = grid.nodes(0);
   int cell_rows = 1, node_rows = 1;
   for (int d = 1; d < Dim; ++d) cell_rows *= grid.cells(d), node_rows *= grid.nodes(d);
   const int threads = omp_get_max_threads();
   cell_min_.assign(static_cast<std::size_t>(threads) * cell_rows, INT_MAX);
   cell_max_.assign(static_cast<std::size_t>(threads) * cell_rows, -1);
-  const Vec<Dim> origin = grid.origin();
-  const double inv_h = 1.0 / grid.cell();
   const int n = static_cast<int>(x.size());
   // Each thread marks its own copy: the lowest and highest x cell per row of cells.
 #pragma omp parallel
@@ -35,9 +33,7 @@ void ActiveNodes<Dim>::build(const Grid<Dim>& grid, const std::vector<Vec<Dim>>&
     };
 #pragma omp for schedule(static) nowait
     for (int p = 0; p < n; ++p) {
-      int c[Dim];
-      for (int d = 0; d < Dim; ++d)  // the cell CellIndex::of gives
-        c[d] = std::clamp(static_cast<int>(std::floor((x[p][d] - origin[d]) * inv_h)), 0, grid.cells(d) - 1);
+      const auto c = cells.coords_of(x[p]);
       int row = 0;
       for (int d = Dim - 1; d >= 1; --d) row = row * grid.cells(d) + c[d];
       if (row != run_row) {

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "cell_index.hpp"
 #include "grid.hpp"
 
 namespace seismpm {
@@ -13,9 +14,9 @@ namespace seismpm {
 template <int Dim>
 class ActiveNodes {
  public:
-  // From the particles' positions: a particle in cell c reaches nodes c + lo .. c + hi along each
-  // axis (lo, hi from the shape function). Positions outside the grid are clamped to its cells.
-  void build(const Grid<Dim>& grid, const std::vector<Vec<Dim>>& x, int lo, int hi);
+  // From the particles' positions: a particle in cell c (`cells`, clamped to the grid) reaches nodes
+  // c + lo .. c + hi along each axis (lo, hi from the shape function).
+  void build(const Grid<Dim>& grid, const CellIndex<Dim>& cells, const std::vector<Vec<Dim>>& x, int lo, int hi);
   // Every node of the grid (a step with fixes, which may write to nodes no particle reaches).
   void cover(const Grid<Dim>& grid);
 

@@ -35,11 +35,13 @@ class CellIndex {
     return n;
   }
   // Index of the cell holding x, clamped to the grid.
-  int of(const Vec<Dim>& x) const {
+  int of(const Vec<Dim>& x) const { return of_coords(coords_of(x)); }
+  // Coordinates of the cell holding x, clamped to the grid.
+  std::array<int, Dim> coords_of(const Vec<Dim>& x) const {
     std::array<int, Dim> c;
     for (int d = 0; d < Dim; ++d)
       c[d] = std::clamp(static_cast<int>(std::floor((x[d] - origin_[d]) * inv_h_)), 0, cells_[d] - 1);
-    return of_coords(c);
+    return c;
   }
   int of_coords(const std::array<int, Dim>& c) const {
     int index = c[slab_axis_];

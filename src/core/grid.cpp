@@ -67,6 +67,17 @@ Vec<Dim> Grid<Dim>::node_position(int node) const {
 }
 
 template <int Dim>
+void Grid<Dim>::reset_nodes(int first, int end) {
+  for (int i = first; i < end; ++i) {
+    mass[i] = 0.0;
+    momentum[i].setZero();
+    force[i].setZero();
+    velocity[i].setZero();
+    acceleration[i].setZero();
+  }
+}
+
+template <int Dim>
 void Grid<Dim>::reset(bool kinematics) {
   const int n = node_count();
 #pragma omp parallel for schedule(static)

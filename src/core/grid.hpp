@@ -46,6 +46,8 @@ class Grid {
   // Zeroes mass, momentum and force before a transfer, and with `kinematics` velocity and
   // acceleration too (every field: what a step over the active nodes only takes for granted).
   void reset(bool kinematics = false);
+  // Zeroes every field of nodes [first, end).
+  void reset_nodes(int first, int end);
 
   // Holds the given degrees of freedom at zero on every node of a domain edge and of the ghost
   // layers beyond it.

@@ -386,16 +386,7 @@ void Model<Dim>::reset_grid(bool limited) {
     grid_.reset(limited);
     return;
   }
-  auto& G = grid_;
-  active_.for_each_range([&](int first, int end) {
-    for (int i = first; i < end; ++i) {
-      G.mass[i] = 0.0;
-      G.momentum[i].setZero();
-      G.force[i].setZero();
-      G.velocity[i].setZero();
-      G.acceleration[i].setZero();
-    }
-  });
+  active_.for_each_range([&](int first, int end) { grid_.reset_nodes(first, end); });
 }
 
 // Shape functions at the start-of-step positions, each particle's cell and the scatter schedule;
@@ -406,9 +397,7 @@ void Model<Dim>::locate_particles(bool limited) {
   const int outside = support_.template locate<Shape>(grid_, particles_);
   if (outside < static_cast<int>(particles_.size())) fail(outside, "is outside the grid");
   if (limited) {
-    // A particle in cell c reaches nodes c .. c + 1 (linear) or c - 1 .. c + 2 (uGIMP) per axis.
-    constexpr int lo = Shape::K == 2 ? 0 : -1, hi = Shape::K == 2 ? 1 : 2;
-    active_.build(grid_, particles_.x, lo, hi);
+    active_.build(grid_, support_.cells, particles_.x, Shape::kReachLo, Shape::kReachHi);
   } else {
     active_.cover(grid_);
   }

@@ -17,6 +17,8 @@ inline std::string_view to_string(ShapeKind k) { return k == ShapeKind::Linear ?
 // Tent function N(r) = 1 - |r|.
 struct LinearShape {
   static constexpr int K = 2;
+  // A particle in cell c reaches nodes c + kReachLo .. c + kReachHi along each axis.
+  static constexpr int kReachLo = 0, kReachHi = 1;
 
   static int first_node(double xi, double /*l*/) { return static_cast<int>(std::floor(xi)); }
   // Valid for first <= xi <= first + 1 (the particle's cell).
@@ -33,6 +35,9 @@ struct LinearShape {
 // (cell units, 0 < l <= 1/2, kept at its initial size).
 struct GimpShape {
   static constexpr int K = 3;
+  // A particle in cell c reaches nodes c - 1 .. c + 2 along each axis: three of them, which three
+  // depending on where in the cell it lies.
+  static constexpr int kReachLo = -1, kReachHi = 2;
 
   // Value and derivative at r, by piece; inv_2l = 1 / 2l (one division per axis, not one per node).
   static void piece(double r, double l, double inv_2l, double& w, double& dw) {

@@ -55,7 +55,7 @@ template <int Dim>
 double signal_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p, double cell) {
   const int m = P.material[p];
   const double s = wave_speed(P, c, p) + P.v[p].norm();
-  if (!c.any_rayleigh || !(c.rayleigh_beta[m] > 0.0)) return s;
+  if (!(c.rayleigh_beta[m] > 0.0)) return s;
   const double xi = c.rayleigh_beta[m] * s / cell;
   return s * (std::sqrt(1.0 + xi * xi) + xi);
 }

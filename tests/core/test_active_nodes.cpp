@@ -30,8 +30,8 @@ void check_spans_cover_stencils() {
   x.push_back(grid.domain_lower());
   x.push_back(grid.domain_upper());
   ActiveNodes<Dim> active;
-  constexpr int lo = Shape::K == 2 ? 0 : -1, hi = Shape::K == 2 ? 1 : 2;
-  active.build(grid, x, lo, hi);
+  constexpr int lo = Shape::kReachLo, hi = Shape::kReachHi;
+  active.build(grid, CellIndex<Dim>(grid), x, lo, hi);
   std::vector<char> in(grid.node_count(), 0);
   active.for_each_range([&](int first, int end) {
     for (int i = first; i < end; ++i) in[i] = 1;
