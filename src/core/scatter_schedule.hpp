@@ -58,9 +58,10 @@ class ScatterSchedule {
   template <class F>
   void for_each_in_own_cell_by_slab(F&& f) const {
     const int slabs = static_cast<int>(begin_.size()) - 1;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int s = 0; s < slabs; ++s)
+#pragma omp parallel
+    for_my_slabs(0, 1, slabs, [&](int s) {
       for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(s, order_[k]);
+    });
   }
   // The same without the slab.
   template <class F>
@@ -73,14 +74,35 @@ class ScatterSchedule {
   template <class F>
   void for_each(F&& f) const {
     const int slabs = static_cast<int>(begin_.size()) - 1;
+#pragma omp parallel
     for (int colour = 0; colour < 2; ++colour) {
-#pragma omp parallel for schedule(dynamic, 1)
-      for (int s = colour; s < slabs; s += 2)
+      for_my_slabs(colour, 2, slabs, [&](int s) {
         for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
+      });
+#pragma omp barrier
     }
   }
 
  private:
+  // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
+  // below `slabs`. Each thread takes the slabs whose particles start in its equal share of those slabs'
+  // particles: contiguous runs of slabs, so a thread meets about the particles that the static loops
+  // over particles give it (its cache holds them), and the work is even where slabs differ in size.
+  // Which thread runs a slab changes no node's sum: a colour's slabs touch disjoint nodes.
+  template <class G>
+  void for_my_slabs(int first, int step, int slabs, G&& g) const {
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+    long total = 0;
+    for (int s = first; s < slabs; s += step) total += begin_[s + 1] - begin_[s];
+    const long lo = total * t / threads, hi = total * (t + 1) / threads;
+    long start = 0;  // particles in this colour's slabs before slab s
+    for (int s = first; s < slabs && start < hi; s += step) {
+      const long size = begin_[s + 1] - begin_[s];
+      if (size > 0 && start >= lo) g(s);
+      start += size;
+    }
+  }
+
   std::vector<int> slab_of_;
   std::vector<int> begin_;
   std::vector<int> order_;

@@ -1,0 +1,136 @@
+// The scatter schedule: every particle once, each slab's particles in order, slabs of one colour
+// never at the same time as a slab of the other, and threads sharing the particles evenly by whole
+// slabs, whatever the number of threads.
+#include <omp.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <random>
+#include <vector>
+
+#include "core/scatter_schedule.hpp"
+
+using namespace seismpm;
+
+namespace {
+
+// Slab cells of `n` particles crowded into a few slabs of a 200-cell axis, most slabs empty (a block
+// in a grid much larger than itself).
+std::vector<int> crowded_cells(int n) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> dense(40, 79), sparse(0, 199);
+  std::vector<int> cell(n);
+  for (int p = 0; p < n; ++p) cell[p] = p % 10 ? dense(rng) : sparse(rng);
+  return cell;
+}
+
+struct Visit {
+  int thread, slab, particle, colour_round;  // colour_round: the slab's colour, 0 runs first
+};
+
+}  // namespace
+
+TEST_CASE("scatter schedule: every particle once, in order per slab, colours apart, work shared evenly") {
+  const int n = 5000, cells = 200;
+  const auto cell = crowded_cells(n);
+  ScatterSchedule schedule;
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, 2, 3, 4}) {
+    omp_set_num_threads(threads);
+    schedule.build(n, cells, [&](int p) { return cell[p]; });
+    std::vector<std::vector<Visit>> seen(threads);
+    schedule.for_each([&](int p) {
+      const int t = omp_get_thread_num();
+      const int slab = cell[p] / ScatterSchedule::kSlabCells;
+      seen[t].push_back({t, slab, p, slab % 2});
+    });
+    std::vector<int> count(n, 0);
+    std::vector<long> load(threads, 0);
+    for (int t = 0; t < threads; ++t) {
+      const auto& v = seen[t];
+      load[t] = static_cast<long>(v.size());
+      for (std::size_t k = 0; k < v.size(); ++k) {
+        ++count[v[k].particle];
+        if (k == 0) continue;
+        // Colour 0 first; within a colour, slabs in increasing order, a slab's particles increasing.
+        REQUIRE(v[k - 1].colour_round <= v[k].colour_round);
+        if (v[k - 1].colour_round == v[k].colour_round) {
+          REQUIRE(v[k - 1].slab <= v[k].slab);
+          if (v[k - 1].slab == v[k].slab) REQUIRE(v[k - 1].particle < v[k].particle);
+        }
+      }
+    }
+    for (int p = 0; p < n; ++p) REQUIRE(count[p] == 1);
+    // A slab belongs to one thread only.
+    std::vector<int> owner(cells / ScatterSchedule::kSlabCells, -1);
+    for (int t = 0; t < threads; ++t)
+      for (const auto& v : seen[t]) {
+        if (owner[v.slab] < 0) owner[v.slab] = t;
+        REQUIRE(owner[v.slab] == t);
+      }
+    // Even shares: no thread more than its share of each colour plus the largest slab of that colour.
+    long largest = 0;
+    for (int s = 0; s < schedule.slabs(); ++s)
+      largest = std::max<long>(largest, std::count_if(cell.begin(), cell.end(),
+                                                      [&](int c) { return c / ScatterSchedule::kSlabCells == s; }));
+    for (int t = 0; t < threads; ++t) CHECK(load[t] <= n / threads + 2 * largest);
+    if (threads == 2) CHECK(std::min(load[0], load[1]) > n / 4);  // both threads work
+  }
+  omp_set_num_threads(saved);
+}
+
+TEST_CASE("scatter schedule: each colour ends before the other starts") {
+  const int n = 4000, cells = 120;
+  std::vector<int> cell(n);
+  for (int p = 0; p < n; ++p) cell[p] = (p * 7) % cells;
+  ScatterSchedule schedule;
+  const int saved = omp_get_max_threads();
+  for (int threads : {2, 3}) {
+    omp_set_num_threads(threads);
+    schedule.build(n, cells, [&](int p) { return cell[p]; });
+    const int colour0 = static_cast<int>(
+        std::count_if(cell.begin(), cell.end(), [](int c) { return c / ScatterSchedule::kSlabCells % 2 == 0; }));
+    int in_colour[2] = {0, 0};
+    bool overlap = false;
+    schedule.for_each([&](int p) {
+      const int colour = cell[p] / ScatterSchedule::kSlabCells % 2;
+      int done0;
+#pragma omp atomic read
+      done0 = in_colour[0];
+      if (colour == 1 && done0 < colour0) overlap = true;  // a colour-1 slab while colour 0 still runs
+#pragma omp atomic
+      in_colour[colour] += 1;
+    });
+    CHECK_FALSE(overlap);
+    CHECK(in_colour[0] + in_colour[1] == n);
+  }
+  omp_set_num_threads(saved);
+}
+
+TEST_CASE("scatter schedule: own-cell walk visits every particle once, slabs on one thread each") {
+  const int n = 3000, cells = 200;
+  const auto cell = crowded_cells(n);
+  ScatterSchedule schedule;
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    schedule.build(n, cells, [&](int p) { return cell[p]; });
+    std::vector<int> count(n, 0), owner(schedule.slabs(), -1);
+    bool shared_slab = false;
+    schedule.for_each_in_own_cell_by_slab([&](int slab, int p) {
+      const int t = omp_get_thread_num();
+      int previous;
+#pragma omp atomic capture
+      {
+        previous = owner[slab];
+        owner[slab] = t;
+      }
+      if (previous >= 0 && previous != t) shared_slab = true;
+#pragma omp atomic
+      ++count[p];
+    });
+    CHECK_FALSE(shared_slab);
+    for (int p = 0; p < n; ++p) REQUIRE(count[p] == 1);
+  }
+  omp_set_num_threads(saved);
+}
