@@ -7,11 +7,24 @@
 // (OMP_WAIT_POLICY or GOMP_SPINCOUNT).
 #pragma once
 
+#include <string>
+
 namespace seismpm::app {
 
-// The policy for `threads` threads on `cpus` cores with a load average `load` from other programs:
+// The policy for `threads` threads on `cpus` cores while other programs keep `load` cores busy:
 // true for passive waiting (the cores are taken), false for a short spin.
 bool wait_passively(double load, int cpus, int threads);
+
+// The share of all cores' time that was taken (not idle) between two first lines of /proc/stat;
+// negative when either line is not one.
+double busy_fraction(const std::string& before, const std::string& after);
+
+// The cores other programs keep busy now: /proc/stat looked at twice, 150 ms apart, while this
+// program is still starting (it takes none of them). Not the load average, which counts a run that
+// has just ended for a minute or more: a study of runs one after another would find its own last
+// run there and wait passively (20 % slower on two idle cores). The load average where /proc/stat
+// cannot be read.
+double busy_cores();
 
 // libgomp reads its settings once, when it is loaded, before main() runs: setting them now needs a new
 // start of the program. When neither variable is set, this sets one (OMP_WAIT_POLICY=passive, or
