@@ -217,12 +217,15 @@ template <class Shape>
 int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
   const int slabs = static_cast<int>(slab_cells_.size());
   slab_nodes_.resize(slabs);
+  for (auto& list : slab_nodes_) list.clear();  // also of slabs without cells now, which no thread visits
   std::atomic<int> overflow{-1};
+  // Each thread a contiguous run of a colour's slabs, shared by their cells (handed out one by one,
+  // the slabs went to the threads in no order and two threads gained little over one).
+  auto cells_of = [&](int sl) { return static_cast<long>(slab_cells_[sl].size()); };
+#pragma omp parallel
   for (int colour = 0; colour < 2; ++colour) {
-#pragma omp parallel for schedule(dynamic, 1)
-    for (int sl = colour; sl < slabs; sl += 2) {
+    ScatterSchedule::for_my_share(colour, 2, slabs, cells_of, [&](int sl) {
       auto& touched = slab_nodes_[sl];
-      touched.clear();
       std::array<int, Dim> last{};
       const FieldSet* last_fields = nullptr;
       for (const int c : slab_cells_[sl]) {
@@ -244,7 +247,8 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
           });
         }
       }
-    }
+    });
+#pragma omp barrier
   }
   auto& all = shared_.touched();
   for (const auto& list : slab_nodes_) all.insert(all.end(), list.begin(), list.end());

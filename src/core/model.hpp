@@ -216,9 +216,9 @@ class Model {
   template <class Shape, bool Contact>
   void velocity_gradients(const StepContext& c);
   template <bool Contact>
-  void average_volumetric_strain();
+  void sum_cell_dilation();
   template <bool Contact>
-  void rotate_close_and_update_volume();
+  void rotate_close_and_update_volume(bool average);
   void integrate_materials();
   void rayleigh_stresses(const StepContext& c);
   void finish_step(const StepContext& c);

@@ -83,6 +83,22 @@ class ScatterSchedule {
     }
   }
 
+  // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
+  // below `slabs`, shared by weight(s) (the work of slab s) as for_my_slabs shares them by particles.
+  template <class Weight, class G>
+  static void for_my_share(int first, int step, int slabs, Weight&& weight, G&& g) {
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+    long total = 0;
+    for (int s = first; s < slabs; s += step) total += weight(s);
+    const long lo = total * t / threads, hi = total * (t + 1) / threads;
+    long start = 0;  // weight of this colour's slabs before slab s
+    for (int s = first; s < slabs && start < hi; s += step) {
+      const long size = weight(s);
+      if (size > 0 && start >= lo) g(s);
+      start += size;
+    }
+  }
+
  private:
   // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
   // below `slabs`. Each thread takes the slabs whose particles start in its equal share of those slabs'
@@ -91,16 +107,8 @@ class ScatterSchedule {
   // Which thread runs a slab changes no node's sum: a colour's slabs touch disjoint nodes.
   template <class G>
   void for_my_slabs(int first, int step, int slabs, G&& g) const {
-    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
-    long total = 0;
-    for (int s = first; s < slabs; s += step) total += begin_[s + 1] - begin_[s];
-    const long lo = total * t / threads, hi = total * (t + 1) / threads;
-    long start = 0;  // particles in this colour's slabs before slab s
-    for (int s = first; s < slabs && start < hi; s += step) {
-      const long size = begin_[s + 1] - begin_[s];
-      if (size > 0 && start >= lo) g(s);
-      start += size;
-    }
+    for_my_share(
+        first, step, slabs, [&](int s) { return long{begin_[s + 1] - begin_[s]}; }, g);
   }
 
   std::vector<int> slab_of_;

@@ -10,8 +10,9 @@ template <int Dim>
 template <class Shape, bool Contact>
 void Model<Dim>::update_stress(const StepContext& c) {
   velocity_gradients<Shape, Contact>(c);
-  if (settings_.cell_volumetric_strain) average_volumetric_strain<Contact>();
-  rotate_close_and_update_volume<Contact>();
+  const bool average = settings_.cell_volumetric_strain;
+  if (average) sum_cell_dilation<Contact>();
+  rotate_close_and_update_volume<Contact>(average);
   integrate_materials();
   if (constants_.any_rayleigh) rayleigh_stresses(c);
 }
@@ -68,10 +69,11 @@ void Model<Dim>::velocity_gradients(const StepContext& c) {
 
 // B-bar: the cell's volume-weighted mean volumetric increment replaces each particle's; the
 // deviatoric part stays, and so does de_zz = 0 in plane strain. Removes the volumetric locking that
-// isochoric plastic flow and near-incompressibility cause in low-order cells.
+// isochoric plastic flow and near-incompressibility cause in low-order cells. Here the cells' sums;
+// rotate_close_and_update_volume applies the mean on its pass over the particles.
 template <int Dim>
 template <bool Contact>
-void Model<Dim>::average_volumetric_strain() {
+void Model<Dim>::sum_cell_dilation() {
   const int cells = grid_.cell_count();
   cell_volume_.assign(cells, 0.0);
   cell_dilation_.assign(cells, 0.0);
@@ -83,31 +85,28 @@ void Model<Dim>::average_volumetric_strain() {
     cell_volume_[cell_of[p]] += P.volume[p];
     cell_dilation_[cell_of[p]] += P.volume[p] * trace(strain_increment_[p]);
   });
-  const int n = static_cast<int>(particles_.size());
-#pragma omp parallel for schedule(static)
-  for (int p = 0; p < n; ++p) {
-    if constexpr (Contact)
-      if (contact_.rigid(P.body[p])) continue;
-    Sym& de = strain_increment_[p];
-    const int c = cell_of[p];
-    const double correction = (cell_dilation_[c] / cell_volume_[c] - trace(de)) / Dim;
-    for (int d = 0; d < Dim; ++d) de[d] += correction;
-  }
 }
 
-// Jaumann rotation of the old stress, total strain, crack closure and the new volume (capped at
-// max_dilation times the stress-free one).
+// With `average`, the cell's mean volumetric increment (sum_cell_dilation) first; then the Jaumann
+// rotation of the old stress, total strain, crack closure and the new volume (capped at max_dilation
+// times the stress-free one).
 template <int Dim>
 template <bool Contact>
-void Model<Dim>::rotate_close_and_update_volume() {
+void Model<Dim>::rotate_close_and_update_volume(bool average) {
   const int n = static_cast<int>(particles_.size());
   const double max_volume_ratio = settings_.max_dilation;
   auto& P = particles_;
+  const auto& cell_of = support_.cell_of;
 #pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p) {
     if constexpr (Contact)
       if (contact_.rigid(P.body[p])) continue;
     Sym& de = strain_increment_[p];
+    if (average) {
+      const int c = cell_of[p];
+      const double correction = (cell_dilation_[c] / cell_volume_[c] - trace(de)) / Dim;
+      for (int d = 0; d < Dim; ++d) de[d] += correction;
+    }
     Mat3 w = Mat3::Zero();
     w(0, 1) = spin_[p][0], w(1, 0) = -spin_[p][0];
     w(1, 2) = spin_[p][1], w(2, 1) = -spin_[p][1];
@@ -188,9 +187,9 @@ void Model<Dim>::rebuild_material_lists() {
 #define SEISMPM_STRESS(D, S, C)                                    \
   template void Model<D>::update_stress<S, C>(const StepContext&); \
   template void Model<D>::velocity_gradients<S, C>(const StepContext&);
-#define SEISMPM_STRESS_CELLS(D, C)                        \
-  template void Model<D>::average_volumetric_strain<C>(); \
-  template void Model<D>::rotate_close_and_update_volume<C>();
+#define SEISMPM_STRESS_CELLS(D, C)                \
+  template void Model<D>::sum_cell_dilation<C>(); \
+  template void Model<D>::rotate_close_and_update_volume<C>(bool);
 SEISMPM_FOR_EACH_STEP_VARIANT(SEISMPM_STRESS, SEISMPM_STRESS_CELLS)
 #undef SEISMPM_STRESS
 #undef SEISMPM_STRESS_CELLS

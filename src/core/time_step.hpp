@@ -40,7 +40,7 @@ struct MaterialConstants {
 // One square root (sqrt is monotonic, so sqrt(max(a, b)) = max(sqrt a, sqrt b) exactly) and a select
 // instead of a branch: this runs for every particle on every step.
 template <int Dim>
-double wave_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p) {
+[[gnu::always_inline]] inline double wave_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p) {
   const int m = P.material[p];
   const double rho = P.density(p), rho0 = c.initial_density[m], M = c.p_wave_modulus[m];
   const bool opened = c.crack_closure & (c.tensionless[m] != 0) & (rho * (1.0 + 1e-9) < rho0);
@@ -51,8 +51,11 @@ double wave_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size
 // stiffness-proportional damping beta, the explicit limit of the highest grid mode w = 2c/h, damped at
 // xi = beta w / 2 = beta c / h, is dt = (2/w)(sqrt(1 + xi^2) - xi): the speed is raised by the inverse of
 // that factor, c (sqrt(1 + xi^2) + xi), so that dt = cfl h / speed still holds.
+// Inlined into the loop over particles, where one particle's divisions and square roots can overlap
+// the next one's.
 template <int Dim>
-double signal_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p, double cell) {
+[[gnu::always_inline]] inline double signal_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p,
+                                                  double cell) {
   const int m = P.material[p];
   const double s = wave_speed(P, c, p) + P.v[p].norm();
   if (!(c.rayleigh_beta[m] > 0.0)) return s;

@@ -179,15 +179,9 @@ MohrCoulomb::Return MohrCoulomb::return_in_principal(const ReturnTables& t, cons
   return a < t.apex ? Return::TensionApex : Return::Apex;
 }
 
-// The strength tables at `plastic`, or nullptr where the ordered principal trial sb is elastic. For
-// ordered values the face and s1 <= T imply the other five planes (k >= 1, s1 >= s2 >= s3), exactly
-// in floating point too (rounding is monotone).
-const MohrCoulomb::ReturnTables* MohrCoulomb::plastic_tables(const Eigen::Vector3d& sb, double plastic,
-                                                             ReturnTables& softened) const {
-  if (!p_.softening) {
-    const ReturnTables& t = fixed_;
-    return t.a[0].dot(sb) - t.r[0] > 0.0 || sb[0] - p_.tension > 0.0 ? &t : nullptr;
-  }
+// plastic_tables with softening: the strength at `plastic`, its tables only where the trial yields.
+const MohrCoulomb::ReturnTables* MohrCoulomb::softened_tables(const Eigen::Vector3d& sb, double plastic,
+                                                              ReturnTables& softened) const {
   const Strength st = strength(p_, plastic);
   if (st.k() * sb[0] - sb[2] - st.sigma_c() <= 0.0 && sb[0] <= p_.tension) return nullptr;
   softened = tables(plastic);
@@ -197,17 +191,38 @@ const MohrCoulomb::ReturnTables* MohrCoulomb::plastic_tables(const Eigen::Vector
 // Plane-strain states (xz = yz = 0): the in-plane principal values m +- r take their directions from
 // the angle 2 theta (cos = d / r, sin = xy / r), and sigma_zz is the third value in any order, so the
 // return rotates back in closed form, with neither eigenvectors nor a square root beyond r's.
-template <bool WithPlasticStrain>
-MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plastic) const {
-  const double m = 0.5 * (trial[0] + trial[1]), d = 0.5 * (trial[0] - trial[1]);
-  const double r = std::sqrt(d * d + trial[3] * trial[3]);
-  // Slots 0 (in-plane major), 1 (in-plane minor), 2 (zz), ordered descending in `slot`.
-  double v[3] = {m + r, m - r, trial[2]};
-  int slot[3] = {0, 1, 2};
+namespace {
+
+// A plane-strain trial's principal values, ordered: the in-plane ones m +- r and sigma_zz. slot[i]
+// says where value i came from: 0 in-plane major, 1 in-plane minor, 2 zz.
+struct PlanePrincipal {
+  double m, d, r;
+  double v[3];
+  int slot[3];
+};
+
+inline PlanePrincipal plane_principal(const Sym& trial) {
+  PlanePrincipal pp;
+  pp.m = 0.5 * (trial[0] + trial[1]), pp.d = 0.5 * (trial[0] - trial[1]);
+  pp.r = std::sqrt(pp.d * pp.d + trial[3] * trial[3]);
+  double* v = pp.v;
+  int* slot = pp.slot;
+  v[0] = pp.m + pp.r, v[1] = pp.m - pp.r, v[2] = trial[2];
+  slot[0] = 0, slot[1] = 1, slot[2] = 2;
   if (v[1] < v[2]) std::swap(v[1], v[2]), std::swap(slot[1], slot[2]);
   if (v[0] < v[1]) std::swap(v[0], v[1]), std::swap(slot[0], slot[1]);
   if (v[1] < v[2]) std::swap(v[1], v[2]), std::swap(slot[1], slot[2]);
-  const Eigen::Vector3d sb(v[0], v[1], v[2]);
+  return pp;
+}
+
+}  // namespace
+
+template <bool WithPlasticStrain>
+MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plastic) const {
+  const PlanePrincipal pp = plane_principal(trial);
+  const double d = pp.d, r = pp.r;
+  const int* slot = pp.slot;
+  const Eigen::Vector3d sb(pp.v[0], pp.v[1], pp.v[2]);
   Result out;
   ReturnTables softened;
   const ReturnTables* t = plastic_tables(sb, plastic, softened);
@@ -270,12 +285,23 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
 
 void MohrCoulomb::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
+  const bool fixed_strength = !p_.softening;
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < b.count; ++k) {
     const int p = b.index[k];
+    const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+    // Most updates are elastic plane-strain ones: decided here, inline, by the test the full update
+    // makes (plastic_tables), they skip its calls and its result passed through memory.
+    if (fixed_strength && trial[4] == 0.0 && trial[5] == 0.0) {
+      const PlanePrincipal pp = plane_principal(trial);
+      if (elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
+        b.stress[p] = trial;
+        b.yield[p] = 0;
+        continue;
+      }
+    }
     // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-    const Result r =
-        integrate_trial<false>(elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g), b.plastic_strain[p]);
+    const Result r = integrate_trial<false>(trial, b.plastic_strain[p]);
     b.stress[p] = r.stress;
     b.plastic_strain[p] += r.shear_increment;
     b.yield[p] = r.kind != Return::Elastic;

@@ -67,8 +67,19 @@ class MohrCoulomb : public Material {
  private:
   ReturnTables tables(double plastic) const;
   // The tables to return with, nullptr where the ordered trial principal stresses sb are elastic
-  // (`softened` holds the tables of a softening material).
-  const ReturnTables* plastic_tables(const Eigen::Vector3d& sb, double plastic, ReturnTables& softened) const;
+  // (`softened` holds the tables of a softening material). For ordered values the face and s1 <= T
+  // imply the other five planes (k >= 1, s1 >= s2 >= s3), exactly in floating point too (rounding is
+  // monotone). Inline: most trials are elastic, and a call took sb through memory, where reading the
+  // pair back whole waited for its two scalar stores (a third of the update's samples under perf).
+  const ReturnTables* plastic_tables(const Eigen::Vector3d& sb, double plastic, ReturnTables& softened) const {
+    if (p_.softening) return softened_tables(sb, plastic, softened);
+    return elastic_at_fixed_strength(sb) ? nullptr : &fixed_;
+  }
+  // Without softening: whether the ordered trial principal stresses sb lie inside the surface.
+  bool elastic_at_fixed_strength(const Eigen::Vector3d& sb) const {
+    return !(fixed_.a[0].dot(sb) - fixed_.r[0] > 0.0 || sb[0] - p_.tension > 0.0);
+  }
+  const ReturnTables* softened_tables(const Eigen::Vector3d& sb, double plastic, ReturnTables& softened) const;
   // The return of ordered trial principal stresses sb (the directions stay): sets `result`.
   Return return_in_principal(const ReturnTables& t, const Eigen::Vector3d& sb, Eigen::Vector3d& result) const;
   Eigen::Vector3d plastic_principal_strain(const Eigen::Vector3d& ds) const;

@@ -2,13 +2,15 @@
 # A run killed with SIGKILL after a periodic checkpoint, restarted from that checkpoint, ends with the
 # same files, byte for byte, as the run that was never interrupted: every particle and rigid-body .vtu,
 # the .pvd lists, probes.csv and reactions.csv.
-#   restart_after_kill_test.sh SEISMPM MODEL.lua WORKDIR DELAY
-# DELAY: seconds to wait after the first checkpoint appears before the kill (0: at once).
+#   restart_after_kill_test.sh SEISMPM MODEL.lua WORKDIR OUTPUTS
+# OUTPUTS: the output files (particles.pvd entries) the run must also have written before the kill
+# (0: kill as soon as the first checkpoint appears). Counted, not timed: a delay in seconds let a fast
+# machine finish the run before the kill.
 set -u
 seismpm=$1
 model=$2
 work=$3
-delay=$4
+outputs=$4
 full="$work/full"
 killed="$work/killed"
 rm -rf "$work"
@@ -31,7 +33,14 @@ while [ ! -e "$killed/checkpoint.chk" ]; do
   waited=$((waited + 1))
   [ "$waited" -lt 1200 ] || { kill -9 "$pid"; fail "no checkpoint within 60 s"; }
 done
-[ "$delay" = 0 ] || sleep "$delay"
+written() {
+  n=$(grep -c DataSet "$killed/particles.pvd" 2>/dev/null)
+  echo "${n:-0}"
+}
+while [ "$(written)" -lt "$outputs" ]; do
+  kill -0 "$pid" 2>/dev/null || fail "the run ended before $outputs output files"
+  sleep 0.02
+done
 kill -0 "$pid" 2>/dev/null || fail "the run ended before the kill: nothing was interrupted (a longer model?)"
 kill -9 "$pid"
 wait "$pid" 2>/dev/null

@@ -134,3 +134,39 @@ TEST_CASE("scatter schedule: own-cell walk visits every particle once, slabs on 
   }
   omp_set_num_threads(saved);
 }
+
+TEST_CASE("scatter schedule: a share by weight visits every weighted slab of the colour once, in runs") {
+  // Weights like the cells each slab of a contact field holds: many empty, a few heavy.
+  const int slabs = 60;
+  std::vector<long> weight(slabs, 0);
+  for (int s = 10; s < 40; ++s) weight[s] = (s * 37) % 11 + (s == 25 ? 400 : 0);
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, 2, 3, 5}) {
+    omp_set_num_threads(threads);
+    for (int colour = 0; colour < 2; ++colour) {
+      std::vector<int> owner(slabs, -1), visits(slabs, 0);
+#pragma omp parallel
+      ScatterSchedule::for_my_share(
+          colour, 2, slabs, [&](int s) { return weight[s]; },
+          [&](int s) {
+#pragma omp atomic
+            ++visits[s];
+            owner[s] = omp_get_thread_num();  // one visit each, checked below
+          });
+      long total = 0, largest = 0;
+      for (int s = colour; s < slabs; s += 2) total += weight[s], largest = std::max(largest, weight[s]);
+      std::vector<long> load(threads, 0);
+      int last_owner = 0;
+      for (int s = 0; s < slabs; ++s) {
+        const bool mine = s % 2 == colour && weight[s] > 0;
+        REQUIRE(visits[s] == (mine ? 1 : 0));
+        if (!mine) continue;
+        REQUIRE(owner[s] >= last_owner);  // contiguous runs: threads in order along the axis
+        last_owner = owner[s];
+        load[owner[s]] += weight[s];
+      }
+      for (int t = 0; t < threads; ++t) CHECK(load[t] <= total / threads + largest);
+    }
+  }
+  omp_set_num_threads(saved);
+}
