@@ -191,17 +191,7 @@ const MohrCoulomb::ReturnTables* MohrCoulomb::softened_tables(const Eigen::Vecto
 // Plane-strain states (xz = yz = 0): the in-plane principal values m +- r take their directions from
 // the angle 2 theta (cos = d / r, sin = xy / r), and sigma_zz is the third value in any order, so the
 // return rotates back in closed form, with neither eigenvectors nor a square root beyond r's.
-namespace {
-
-// A plane-strain trial's principal values, ordered: the in-plane ones m +- r and sigma_zz. slot[i]
-// says where value i came from: 0 in-plane major, 1 in-plane minor, 2 zz.
-struct PlanePrincipal {
-  double m, d, r;
-  double v[3];
-  int slot[3];
-};
-
-inline PlanePrincipal plane_principal(const Sym& trial) {
+MohrCoulomb::PlanePrincipal MohrCoulomb::plane_principal(const Sym& trial) {
   PlanePrincipal pp;
   pp.m = 0.5 * (trial[0] + trial[1]), pp.d = 0.5 * (trial[0] - trial[1]);
   pp.r = std::sqrt(pp.d * pp.d + trial[3] * trial[3]);
@@ -215,11 +205,8 @@ inline PlanePrincipal plane_principal(const Sym& trial) {
   return pp;
 }
 
-}  // namespace
-
 template <bool WithPlasticStrain>
-MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plastic) const {
-  const PlanePrincipal pp = plane_principal(trial);
+MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, const PlanePrincipal& pp, double plastic) const {
   const double d = pp.d, r = pp.r;
   const int* slot = pp.slot;
   const Eigen::Vector3d sb(pp.v[0], pp.v[1], pp.v[2]);
@@ -260,7 +247,8 @@ MohrCoulomb::Result MohrCoulomb::integrate_plane(const Sym& trial, double plasti
 // solver. Without WithPlasticStrain the plastic strain tensor is left zero (only its shear is kept).
 template <bool WithPlasticStrain>
 MohrCoulomb::Result MohrCoulomb::integrate_trial(const Sym& trial, double plastic) const {
-  if (trial[4] == 0.0 && trial[5] == 0.0) return integrate_plane<WithPlasticStrain>(trial, plastic);
+  if (trial[4] == 0.0 && trial[5] == 0.0)
+    return integrate_plane<WithPlasticStrain>(trial, plane_principal(trial), plastic);
   const Principal pb = principal_stress(trial);
   const Eigen::Vector3d& sb = pb.value;
   ReturnTables softened;
@@ -290,18 +278,21 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
   for (int k = 0; k < b.count; ++k) {
     const int p = b.index[k];
     const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
-    // Most updates are elastic plane-strain ones: decided here, inline, by the test the full update
-    // makes (plastic_tables), they skip its calls and its result passed through memory.
-    if (fixed_strength && trial[4] == 0.0 && trial[5] == 0.0) {
+    // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
+    Result r;
+    if (trial[4] == 0.0 && trial[5] == 0.0) {  // plane strain: integrate_trial's first case, taken here
       const PlanePrincipal pp = plane_principal(trial);
-      if (elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
+      // Most updates are elastic: decided inline, by the test the full update makes (plastic_tables),
+      // they skip its call and its result passed through memory.
+      if (fixed_strength && elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
         b.stress[p] = trial;
         b.yield[p] = 0;
         continue;
       }
+      r = integrate_plane<false>(trial, pp, b.plastic_strain[p]);
+    } else {
+      r = integrate_trial<false>(trial, b.plastic_strain[p]);
     }
-    // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-    const Result r = integrate_trial<false>(trial, b.plastic_strain[p]);
     b.stress[p] = r.stress;
     b.plastic_strain[p] += r.shear_increment;
     b.yield[p] = r.kind != Return::Elastic;

@@ -86,8 +86,16 @@ class MohrCoulomb : public Material {
   // integrate() from an elastic trial, and its case xz = yz = 0 (every 2D update) in closed form.
   template <bool WithPlasticStrain>
   Result integrate_trial(const Sym& trial, double plastic) const;
+  // A plane-strain trial's principal values, ordered: the in-plane ones m +- r and sigma_zz. slot[i]
+  // says where value i came from: 0 in-plane major, 1 in-plane minor, 2 zz.
+  struct PlanePrincipal {
+    double m, d, r;
+    double v[3];
+    int slot[3];
+  };
+  static PlanePrincipal plane_principal(const Sym& trial);
   template <bool WithPlasticStrain>
-  Result integrate_plane(const Sym& trial, double plastic) const;
+  Result integrate_plane(const Sym& trial, const PlanePrincipal& pp, double plastic) const;
 
   MohrCoulombParameters p_;
   ElasticConstants elastic_;
