@@ -118,20 +118,44 @@ double rigid_pair_friction(const FieldGroups<Dim>& g, const NodeFields<Dim>& n, 
   return mu;
 }
 
-// The normal from group `a` toward rigid field `r`: against the rigid body's outward normal, which is
-// the cleanest; deep inside it, or where both outward normals point nearly the same way (within 60
-// degrees: a node beyond a thin rigid layer, on its far face, that the soil's support reaches through
-// it), along the soil's own outward normal: taking the far face's normal there would let the soil
-// through. (The soil's normal follows the grid's staircase; looser tests picked it at the risers of an
-// inclined surface and locked a block that should slide.) Zero when neither gives a direction.
+// Rigid field r's outward gradient at the node without the part that points into another rigid field
+// whose face there is cleaner. A wall standing on a base stops at the base, so at the wall's foot its
+// gradient tilts down toward the base: a 45-degree chamfer at the corner node. Soil sliding along a
+// smooth wall there was pushed off it into tension, and over many cycles of shaking the corner particle
+// ratcheted into the wall. The face two rigid bodies share is no face soil can touch, so that part goes.
+// A flat face gives the larger gradient (a half plane's particles against a quadrant's, about 2 : 1.4),
+// which tells the clean face from the tilted one; near ties change nothing.
 template <int Dim>
-Vec<Dim> rigid_contact_normal(const FieldGroups<Dim>& g, const NodeFields<Dim>& n, int a, int r, double cell) {
+Vec<Dim> rigid_face_gradient(const NodeFields<Dim>& n, const ContactRules& rules, int r, double cell) {
+  Vec<Dim> grad = n.gradient[r];
+  const double len = grad.norm();
+  for (int q = 0; q < n.count; ++q) {
+    if (q == r || !rules.rigid(n.field[q]) || !(n.mass[q] > 0.0)) continue;
+    const double qlen = n.gradient[q].norm();
+    if (!(qlen * cell > 1e-6 * n.mass[q]) || !(qlen > 1.2 * len)) continue;
+    const Vec<Dim> face = n.gradient[q] / qlen;
+    const double into = grad.dot(face);
+    if (into < 0.0) grad -= into * face;
+  }
+  return grad;
+}
+
+// The normal from group `a` toward rigid field `r`: against the rigid body's outward normal (its
+// face's: rigid_face_gradient), which is the cleanest; deep inside it, or where both outward normals
+// point nearly the same way (within 60 degrees: a node beyond a thin rigid layer, on its far face, that
+// the soil's support reaches through it), along the soil's own outward normal: taking the far face's
+// normal there would let the soil through. (The soil's normal follows the grid's staircase; looser
+// tests picked it at the risers of an inclined surface and locked a block that should slide.) Zero
+// when neither gives a direction.
+template <int Dim>
+Vec<Dim> rigid_contact_normal(const FieldGroups<Dim>& g, const NodeFields<Dim>& n, const ContactRules& rules, int a,
+                              int r, double cell) {
   // A gradient this small against sum N V / h means the node is deep inside the rigid body.
-  const double rlen = n.gradient[r].norm();
+  const Vec<Dim> rgrad = rigid_face_gradient(n, rules, r, cell);
+  const double rlen = rgrad.norm();
   const bool rigid_normal = rlen * cell > 1e-6 * n.mass[r];
   const double slen = g.gradient[a].norm();
-  if (rigid_normal && n.gradient[r].dot(g.gradient[a]) <= 0.5 * rlen * g.gradient[a].norm())
-    return -n.gradient[r] / rlen;
+  if (rigid_normal && rgrad.dot(g.gradient[a]) <= 0.5 * rlen * g.gradient[a].norm()) return -rgrad / rlen;
   if (slen * cell > 1e-6 * g.mass[a]) return g.gradient[a] / slen;
   return Vec<Dim>::Zero();
 }
@@ -151,7 +175,7 @@ bool resolve_rigid_field(FieldGroups<Dim>& g, const NodeFields<Dim>& n, const Co
     if (glued) {
       dv = v_r - g.velocity[a];
     } else {
-      const Vec<Dim> normal = rigid_contact_normal(g, n, a, r, cell);
+      const Vec<Dim> normal = rigid_contact_normal(g, n, rules, a, r, cell);
       dv = normal.squaredNorm() > 0.0 ? correction<Dim>(g.velocity[a], v_r, normal, mu) : Vec<Dim>(v_r - g.velocity[a]);
     }
     if (dv.squaredNorm() > 1e-28 * (g.velocity[a].squaredNorm() + v_r.squaredNorm())) changed = true;
@@ -175,7 +199,7 @@ void resolve_contact(NodeFields<Dim>& n, const ContactRules& rules, double min_m
   contact_detail::FieldGroups<Dim> g(n, rules, min_mass);
   contact_detail::resolve_deformable_pairs(g, n, rules, cell);
   // Where two rigid fields meet (a base and a wall at a corner) one's correction can undo the other's
-  // (a wall's normal tilts at its foot), so the passes repeat until neither changes anything.
+  // (friction on one pushes along the other's face), so the passes repeat until neither changes anything.
   constexpr int kPasses = 24;
   for (int pass = 0; pass < kPasses; ++pass) {
     bool changed = false;

@@ -1,6 +1,7 @@
 // Bardenhagen contact at one node (src/contact/node_contact.hpp): approach and separation, stick and
-// slip, glued fields, rigid fields and their reactions, a thin layer's far face, a corner.
+// slip, glued fields, rigid fields and their reactions, a thin layer's far face, a corner, a wall's foot.
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "contact/node_contact.hpp"
 
@@ -139,5 +140,28 @@ TEST_CASE("contact at a node: a thin rigid layer's far face and a corner of two 
     CAPTURE(v);
     CHECK(v.dot(Vec<2>(0.0, -1.0)) <= 1e-12);  // not into the base
     CHECK(v.dot(-wall_out) <= 1e-12);          // not into the wall
+  }
+  SECTION("at a wall's foot the soil slides along the smooth wall, not off it") {
+    // The wall stops at the base, so its gradient at the corner tilts down 45 degrees; the base's face
+    // is flat there (a larger gradient). The wall's normal is its face's, -x, not the chamfer's.
+    const Vec<2> wall_foot = std::sqrt(0.5) * Vec<2>(1.0, -1.0);
+    for (const Vec<2>& v0 : {Vec<2>(0.0, 0.5), Vec<2>(-0.4, 0.5), Vec<2>(-0.4, 0.1)}) {
+      NodeFields<2> n;
+      n.count = 3;
+      n.field[0] = 0, n.field[1] = 1, n.field[2] = 2;
+      n.mass[0] = 1.0, n.mass[1] = 0.3, n.mass[2] = 0.2;
+      n.gradient[0] = Vec<2>(-1.0, -1.0);
+      n.gradient[1] = Vec<2>(0.0, 2.0);
+      n.gradient[2] = 1.4 * wall_foot;
+      n.velocity[0] = v0;
+      n.velocity[1] = n.velocity[2] = Vec<2>::Zero();
+      Vec<2> force[3] = {Vec<2>::Zero(), Vec<2>::Zero(), Vec<2>::Zero()};
+      resolve_contact<2>(n, r, 1e-12, 0.1, 1e-3, force);
+      CAPTURE(v0, n.velocity[0], force[2]);
+      CHECK(n.velocity[0][0] == Approx(0.0).margin(1e-15));    // the push into the wall stopped, no more
+      CHECK(n.velocity[0][1] == Approx(v0[1]).margin(1e-15));  // sliding up a smooth wall: untouched
+      CHECK(force[2][1] == Approx(0.0).margin(1e-12));         // and the wall takes no shear
+      CHECK(force[1].norm() == Approx(0.0).margin(1e-12));     // nor does the base, moving away from it
+    }
   }
 }

@@ -1,11 +1,15 @@
 // Multi-body frictional contact (Bardenhagen) and prescribed-velocity rigid bodies: whole bodies against
 // closed-form answers (the correction at one node: tests/contact/test_node_contact.cpp).
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "cases/moving_base_block.hpp"
 #include "core/error.hpp"
+#include "core/history.hpp"
+#include "core/local_damping.hpp"
 #include "core/model.hpp"
 #include "materials/linear_elastic.hpp"
+#include "materials/mohr_coulomb.hpp"
 
 using namespace seismpm;
 
@@ -208,7 +212,7 @@ TEST_CASE("a rough base and a smooth wall meeting at a corner share the load wit
   const int base = m.add_body("base", 2, true), wall = m.add_body("wall", 2, true);
   m.fill_box(base, -1, Vec<2>(-0.2, -0.1), Vec<2>(0.9, 0.0));
   m.fill_box(wall, -1, Vec<2>(-0.1, 0.0), Vec<2>(0.0, 0.8));
-  m.add_contact(soil, base, 1.0);
+  m.add_contact(soil, base, getenv("MUB") ? atof(getenv("MUB")) : 1.0);
   m.add_contact(soil, wall, 0.0);
   auto damping = std::make_shared<LocalDamping<2>>(0.7);
   m.add_fix(damping);
@@ -222,4 +226,61 @@ TEST_CASE("a rough base and a smooth wall meeting at a corner share the load wit
   CHECK(on_base[0] + on_wall[0] == Approx(mass * 3.0).epsilon(0.01));
   CHECK(std::abs(on_wall[1]) < 0.01 * mass * 9.81);  // a smooth wall takes no shear
   CHECK(on_wall[0] > 0.5 * mass * 3.0);              // and most of the push
+}
+
+TEST_CASE("a shaken box: the soil in the corner of a rough base and a smooth wall stays out of the wall",
+          "[core][contact][rigid]") {
+  // Masa soil (the shaking-table case) 0.1 m deep in a 0.2 m box with one-cell walls, shaken at
+  // 4 Hz, 0.15 m/s. At the wall's foot the wall's own gradient tilts toward the base; taken as the
+  // wall's normal it pushed the sliding soil off the wall into tension, and the corner particle
+  // ratcheted toward the wall: 5 % of its distance in 1.5 s here, and through it in the 0.375 cm
+  // shaking-table run.
+  const double h = 0.01, L = 0.2;
+  ModelSettings<2> s;
+  s.lower = Vec<2>(-2 * h - 0.03, -2 * h);
+  s.upper = Vec<2>(L + 2 * h + 0.03, 0.15);
+  s.cell = h;
+  s.gravity = Vec<2>(0.0, -9.81);
+  s.flip = 0.98;
+  Model<2> m(s);
+  MohrCoulombParameters mc;
+  mc.density = 1680, mc.young = 2.57e6, mc.poisson = 0.33, mc.cohesion = 780, mc.friction = 23;
+  const int mat = m.add_material(std::make_shared<MohrCoulomb>(mc));
+  const int soil = m.add_body("soil", 2);
+  m.fill_box(soil, mat, Vec<2>(0.0, 0.0), Vec<2>(L, 0.1));
+  const auto table = std::make_shared<FunctionHistory>(
+      [](double t) { return 0.15 * std::sin(2 * std::acos(-1.0) * 4.0 * t); }, "table");
+  const std::array<std::shared_ptr<const History>, 2> v{table, std::make_shared<ConstantHistory>(0.0)};
+  const int base = m.add_rigid_body("base", 1, 7800, v);
+  const int left = m.add_rigid_body("left", 1, 7800, v), right = m.add_rigid_body("right", 1, 7800, v);
+  m.fill_box(base, -1, Vec<2>(-h, -h), Vec<2>(L + h, 0.0));
+  m.fill_box(left, -1, Vec<2>(-h, 0.0), Vec<2>(0.0, 0.12));
+  m.fill_box(right, -1, Vec<2>(L, 0.0), Vec<2>(L + h, 0.12));
+  m.add_contact(soil, base, 1.0);
+  m.add_contact(soil, left, 0.0);
+  m.add_contact(soil, right, 0.0);
+  m.begin_phase(false);
+  auto damping = std::make_shared<LocalDamping<2>>(0.7);
+  m.add_fix(damping);
+  m.run(0.3);
+  m.remove_fix(damping.get());
+  m.begin_phase(true);
+  // The corner particle (the first one filled) against the wall's inner face.
+  const auto gap = [&] {
+    const auto& P = m.particles();
+    std::size_t p = 0;
+    while (P.id[p] != 0) ++p;  // the model sorts its particles by cell
+    return P.x[p][0] - (m.centroid(left)[0] + 0.5 * h);
+  };
+  const double gap0 = gap();
+  REQUIRE(gap0 == Approx(0.25 * h).epsilon(0.01));
+  double smallest = gap0;
+  while (m.phase_time() < 1.5) {
+    m.run(0.05);
+    smallest = std::min(smallest, gap());
+  }
+  CAPTURE(gap0, smallest, gap());
+  // The wall's elastic squeeze of the soil is under a micrometre; plastic flow at the corner squeezes
+  // the particle a little (0.18 % of a cell measured), the chamfer made it 1.3 %.
+  CHECK(smallest > gap0 - 0.005 * h);
 }
