@@ -141,17 +141,16 @@ Vec<Dim> rigid_face_gradient(const NodeFields<Dim>& n, const ContactRules& rules
 }
 
 // The normal from group `a` toward rigid field `r`: against the rigid body's outward normal (its
-// face's: rigid_face_gradient), which is the cleanest; deep inside it, or where both outward normals
+// face's, `rgrad`: rigid_face_gradient), which is the cleanest; deep inside it, or where both outward normals
 // point nearly the same way (within 60 degrees: a node beyond a thin rigid layer, on its far face, that
 // the soil's support reaches through it), along the soil's own outward normal: taking the far face's
 // normal there would let the soil through. (The soil's normal follows the grid's staircase; looser
 // tests picked it at the risers of an inclined surface and locked a block that should slide.) Zero
 // when neither gives a direction.
 template <int Dim>
-Vec<Dim> rigid_contact_normal(const FieldGroups<Dim>& g, const NodeFields<Dim>& n, const ContactRules& rules, int a,
-                              int r, double cell) {
+Vec<Dim> rigid_contact_normal(const FieldGroups<Dim>& g, const NodeFields<Dim>& n, const Vec<Dim>& rgrad, int a, int r,
+                              double cell) {
   // A gradient this small against sum N V / h means the node is deep inside the rigid body.
-  const Vec<Dim> rgrad = rigid_face_gradient(n, rules, r, cell);
   const double rlen = rgrad.norm();
   const bool rigid_normal = rlen * cell > 1e-6 * n.mass[r];
   const double slen = g.gradient[a].norm();
@@ -167,6 +166,7 @@ bool resolve_rigid_field(FieldGroups<Dim>& g, const NodeFields<Dim>& n, const Co
                          double dt, Vec<Dim>* force_on) {
   bool changed = false;
   const Vec<Dim>& v_r = n.velocity[r];
+  const Vec<Dim> face = rigid_face_gradient(n, rules, r, cell);
   for (int a = 0; a < n.count; ++a) {
     if (!g.representative(a)) continue;
     bool glued;
@@ -175,7 +175,7 @@ bool resolve_rigid_field(FieldGroups<Dim>& g, const NodeFields<Dim>& n, const Co
     if (glued) {
       dv = v_r - g.velocity[a];
     } else {
-      const Vec<Dim> normal = rigid_contact_normal(g, n, rules, a, r, cell);
+      const Vec<Dim> normal = rigid_contact_normal(g, n, face, a, r, cell);
       dv = normal.squaredNorm() > 0.0 ? correction<Dim>(g.velocity[a], v_r, normal, mu) : Vec<Dim>(v_r - g.velocity[a]);
     }
     if (dv.squaredNorm() > 1e-28 * (g.velocity[a].squaredNorm() + v_r.squaredNorm())) changed = true;
