@@ -403,6 +403,8 @@ void ContactFields<Dim>::resolve_node(int k, bool updated, const Grid<Dim>& grid
     const int s = k * kSlots + j;
     if (rules_.rigid(nf.field[j])) {
       if (updated) slot_reaction_[s] = force_on[j];
+      // The position update reads it (rigid_face_mirror.hpp).
+      S.face[s] = contact_detail::rigid_face_gradient(nf, rules_, j, grid.cell());
       continue;
     }
     if (!(S.mass[s] > min_mass)) continue;

@@ -51,6 +51,7 @@ void SharedNodes<Dim>::build(const ContactRules& rules) {
   gradient.assign(slots, Vec<Dim>::Zero());
   velocity.assign(slots, Vec<Dim>::Zero());
   acceleration.assign(slots, Vec<Dim>::Zero());
+  face.assign(slots, Vec<Dim>::Zero());
 }
 
 template class SharedNodes<2>;

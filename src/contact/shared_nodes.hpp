@@ -73,6 +73,7 @@ class SharedNodes {
   std::vector<Vec<Dim>> gradient;  // deformable: sum m grad N; rigid: sum V grad N
   std::vector<Vec<Dim>> velocity;
   std::vector<Vec<Dim>> acceleration;
+  std::vector<Vec<Dim>> face;  // rigid: the outward gradient of its face, set when contact is resolved
 
  private:
   std::vector<FieldSet> present_;   // per grid node

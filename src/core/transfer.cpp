@@ -1,6 +1,7 @@
 // The transfers of the step: particles to grid, the nodal update and constraints, grid to particles
 // and the MUSL re-map. With Contact, the bodies' own fields at shared nodes are handled by
 // ContactFields, and the particles near them read their own field's slots.
+#include "contact/rigid_face_mirror.hpp"
 #include "held_edges.hpp"
 #include "model.hpp"
 #include "particle_forces.hpp"
@@ -171,6 +172,13 @@ void Model<Dim>::grid_to_particles(const StepContext& c, bool remap) {
     } else {
       P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
     }
+    // Nor a rigid face it is in contact with (rigid_face_mirror.hpp); linear centres never reach one.
+    if constexpr (Contact && Shape::K == 3)
+      if (slotted && contact_.any_rigid())
+        mirror_rigid_faces(contact_, G, st[p], f, vl, [&](int i) -> const Vec<Dim>& {
+          const int k = S.index(i);
+          return k >= 0 ? S.velocity[S.slot(k, f)] : G.velocity[i];
+        });
     // The centre must not cross a held edge (held_edges.hpp). Linear shapes give a node beyond the
     // edge no weight: their centres near it already move at the linear d v_1 and never reach it.
     if (Shape::K > 2 && held.any() && held.near(P.x[p])) {
