@@ -47,36 +47,25 @@ void mirror_rigid_faces(const ContactFields<Dim>& contact, const Grid<Dim>& grid
       continue;
     const int step = (ghost == 0 ? 1 : -1) * grid.stride(d);  // from the ghost layer toward the particle
     const double sign = ghost == 0 ? 1.0 : -1.0;              // the face's outward normal along d
-    // Every node of the stencil's ghost layer along d.
-    int k[Dim] = {};
-    for (;;) {
-      if (k[d] == ghost) {
-        double N = 1.0;
-        int i = st.base;
-        for (int a = 0; a < Dim; ++a) N *= st.w[a][k[a]], i += k[a] * grid.stride(a);
-        const int kg = S.index(i), kf = S.index(i + step);
-        if (N > 0.0 && kg >= 0 && kf >= 0) {
-          const int km = S.index(i + 2 * step);
-          for (int j = 0; j < S.fields(kf); ++j) {
-            const int sf = kf * SharedNodes<Dim>::kSlots + j, q = S.field_of_slot(sf);
-            if (!rules.rigid(q) || rules.glued(field, q) || !(S.mass[sf] > 0.0)) continue;
-            const int sg = S.slot(kg, q);
-            if (sg < 0 || !(S.mass[sg] > 0.0)) continue;  // the body does not reach beyond its face
-            const int sm = km >= 0 ? S.slot(km, q) : -1;
-            if (sm >= 0 && S.mass[sm] > 0.0) continue;  // nor the particle's side of it
-            const Vec<Dim>& n = S.face[sf];
-            const double len = n.norm();
-            if (!(len > 0.0) || !(sign * n[d] >= 0.99 * len)) continue;  // no face along this axis here
-            // u_ghost := -u_mirror, relative to the rigid body's velocity at its face.
-            v[d] += N * (2.0 * S.velocity[sf][d] - node_velocity(i + 2 * step)[d] - node_velocity(i)[d]);
-            break;
-          }
-        }
+    for_each_in_layer(st, grid, d, ghost, [&](int i, double N) {
+      const int kg = S.index(i), kf = S.index(i + step);
+      if (!(N > 0.0) || kg < 0 || kf < 0) return;
+      const int km = S.index(i + 2 * step);
+      for (int j = 0; j < S.fields(kf); ++j) {
+        const int sf = kf * SharedNodes<Dim>::kSlots + j, q = S.field_of_slot(sf);
+        if (!rules.rigid(q) || rules.glued(field, q) || !(S.mass[sf] > 0.0)) continue;
+        const int sg = S.slot(kg, q);
+        if (sg < 0 || !(S.mass[sg] > 0.0)) continue;  // the body does not reach beyond its face
+        const int sm = km >= 0 ? S.slot(km, q) : -1;
+        if (sm >= 0 && S.mass[sm] > 0.0) continue;  // nor the particle's side of it
+        const Vec<Dim>& n = S.face[sf];
+        const double len = n.norm();
+        if (!(len > 0.0) || !(sign * n[d] >= 0.99 * len)) continue;  // no face along this axis here
+        // u_ghost := -u_mirror, relative to the rigid body's velocity at its face.
+        v[d] += N * (2.0 * S.velocity[sf][d] - node_velocity(i + 2 * step)[d] - node_velocity(i)[d]);
+        return;
       }
-      int a = 0;
-      while (a < Dim && ++k[a] == 3) k[a++] = 0;
-      if (a == Dim) break;
-    }
+    });
   }
 }
 

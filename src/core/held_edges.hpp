@@ -19,7 +19,6 @@
 #pragma once
 
 #include <algorithm>
-#include <array>
 
 #include "grid.hpp"
 #include "stencil.hpp"
@@ -64,7 +63,7 @@ class HeldEdges {
         const int out = side == 0 ? -1 : 1;  // towards the ghost layer
         const int ghost = wall[side] + out - first, image = wall[side] - out - first;
         if (ghost < 0 || ghost >= K || image < 0 || image >= K) continue;
-        for_each_in_layer<K>(st, d, ghost, [&](int node, double N) {
+        for_each_in_layer(st, grid_, d, ghost, [&](int node, double N) {
           const int image_node = node + (image - ghost) * grid_.stride(d);
           v[d] -= N * (node_velocity(node)[d] + node_velocity(image_node)[d]);
         });
@@ -85,23 +84,6 @@ class HeldEdges {
   }
 
  private:
-  // Calls f(node, N) for the stencil's nodes whose local index along `axis` is `layer`.
-  template <int K, class F>
-  void for_each_in_layer(const Stencil<Dim, K>& st, int axis, int layer, F&& f) const {
-    std::array<int, Dim> k{};
-    for (;;) {
-      if (k[axis] == layer) {
-        double N = 1.0;
-        int i = st.base;
-        for (int d = 0; d < Dim; ++d) N *= st.w[d][k[d]], i += k[d] * grid_.stride(d);
-        f(i, N);
-      }
-      int d = 0;
-      while (d < Dim && ++k[d] == K) k[d++] = 0;
-      if (d == Dim) return;
-    }
-  }
-
   const Grid<Dim>& grid_;
   Vec<Dim> lower_, upper_;
   bool held_[Dim][2] = {};

@@ -108,6 +108,23 @@ inline void visit(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {
 }
 }  // namespace stencil_detail
 
+// Calls f(node, N) for the stencil's nodes whose local index along `axis` is `layer` (one plane of it).
+template <int Dim, int K, class F>
+inline void for_each_in_layer(const Stencil<Dim, K>& st, const Grid<Dim>& grid, int axis, int layer, F&& f) {
+  int k[Dim] = {};
+  for (;;) {
+    if (k[axis] == layer) {
+      double N = 1.0;
+      int i = st.base;
+      for (int d = 0; d < Dim; ++d) N *= st.w[d][k[d]], i += k[d] * grid.stride(d);
+      f(i, N);
+    }
+    int d = 0;
+    while (d < Dim && ++k[d] == K) k[d++] = 0;
+    if (d == Dim) return;
+  }
+}
+
 // Calls f(node, N, gradN) for every node of the stencil.
 template <int Dim, int K, class F>
 inline void for_each_node(const Stencil<Dim, K>& st, const Grid<Dim>& grid, F&& f) {

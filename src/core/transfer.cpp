@@ -172,23 +172,21 @@ void Model<Dim>::grid_to_particles(const StepContext& c, bool remap) {
     } else {
       P.v[p] = alpha * (P.v[p] + dt * a) + (1.0 - alpha) * vl;
     }
-    // Nor a rigid face it is in contact with (rigid_face_mirror.hpp); linear centres never reach one.
+    // The velocity the particle reads at node i: its own field's where fields meet.
+    const auto own_velocity = [&](int i) -> const Vec<Dim>& {
+      if constexpr (Contact) {
+        const int k = slotted ? S.index(i) : -1;
+        if (k >= 0) return S.velocity[S.slot(k, f)];
+      }
+      return G.velocity[i];
+    };
+    // The centre must not cross a rigid face it is in contact with (rigid_face_mirror.hpp), nor a held
+    // edge (held_edges.hpp). Linear shapes give a node beyond either no weight: their centres near it
+    // already move at the linear d v_1 and never reach it.
     if constexpr (Contact && Shape::K == 3)
-      if (slotted && contact_.any_rigid())
-        mirror_rigid_faces(contact_, G, st[p], f, vl, [&](int i) -> const Vec<Dim>& {
-          const int k = S.index(i);
-          return k >= 0 ? S.velocity[S.slot(k, f)] : G.velocity[i];
-        });
-    // The centre must not cross a held edge (held_edges.hpp). Linear shapes give a node beyond the
-    // edge no weight: their centres near it already move at the linear d v_1 and never reach it.
+      if (slotted && contact_.any_rigid()) mirror_rigid_faces(contact_, G, st[p], f, vl, own_velocity);
     if (Shape::K > 2 && held.any() && held.near(P.x[p])) {
-      held.mirror(st[p], vl, [&](int i) -> const Vec<Dim>& {
-        if constexpr (Contact) {
-          const int k = contact_.near_shared(support_.cell_of[p]) ? S.index(i) : -1;
-          if (k >= 0) return S.velocity[S.slot(k, f)];
-        }
-        return G.velocity[i];
-      });
+      held.mirror(st[p], vl, own_velocity);
       P.x[p] += dt * vl;
       P.u[p] += dt * vl;
       held.keep_inside(P.x[p], P.u[p]);

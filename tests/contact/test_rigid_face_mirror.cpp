@@ -4,47 +4,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/fix.hpp"
 #include "core/history.hpp"
 #include "support/models.hpp"
+#include "support/nodal_velocity.hpp"
 
 using namespace seismpm;
-
-namespace {
-
-// Drives every deformable velocity on the grid, the soil's slots where fields meet included, with a
-// field v(x), after contact has acted (FLIP sees it through the rebuilt accelerations).
-template <int Dim>
-class SlotVelocityField : public Fix<Dim> {
- public:
-  using Field = std::function<Vec<Dim>(const Vec<Dim>&)>;
-  explicit SlotVelocityField(Field f) : field_(std::move(f)) {}
-  std::string_view name() const override { return "slot_velocity_field"; }
-  void nodal_velocities(Model<Dim>& m, const StepContext& c, VelocityStage stage) override {
-    auto& g = m.grid();
-    const bool updated = stage == VelocityStage::Updated;
-    for (int i = 0; i < g.node_count(); ++i) {
-      if (!(g.mass[i] > m.mass_threshold())) continue;
-      const Vec<Dim> v = field_(g.node_position(i));
-      if (updated) g.acceleration[i] = (v - g.momentum[i] / g.mass[i]) / c.dt;
-      g.velocity[i] = v;
-    }
-    auto& S = m.contact().nodes();
-    for (int k = 0; k < S.count(); ++k)
-      for (int j = 0; j < S.fields(k); ++j) {
-        const int s = k * SharedNodes<Dim>::kSlots + j;
-        if (m.contact().rules().rigid(S.field_of_slot(s)) || !(S.mass[s] > 0.0)) continue;
-        const Vec<Dim> v = field_(g.node_position(S.node(k)));
-        if (updated) S.acceleration[s] = (v - S.momentum[s] / S.mass[s]) / c.dt;
-        S.velocity[s] = v;
-      }
-  }
-
- private:
-  Field field_;
-};
-
-}  // namespace
 
 // An elastic block against a smooth rigid wall one cell thick (at rest), squeezed toward the wall's
 // face by a nodal velocity field v_n = -c d (d: distance from the face, zero beyond it). Every centre,
@@ -79,12 +43,8 @@ TEMPLATE_TEST_CASE_SIG("a centre squeezed against a rigid face approaches it as 
   const int wall = m->add_rigid_body("wall", 1, 7800, at_rest);
   m->fill_box(wall, -1, wall_lo, wall_hi);
   m->add_contact(0, wall, 0.0);
-  m->add_fix(std::make_shared<SlotVelocityField<Dim>>([&](const Vec<Dim>& x) {
-    Vec<Dim> v = Vec<Dim>::Zero();
-    const double distance = upper ? face - x[axis] : x[axis] - face;
-    v[axis] = (upper ? rate : -rate) * std::max(distance, 0.0);
-    return v;
-  }));
+  m->add_fix(std::make_shared<test::NodalVelocityField<Dim>>(
+      [&](const Vec<Dim>& x) { return test::towards_plane<Dim>(x, axis, upper, face, rate); }));
 
   auto& p = m->particles();
   std::vector<double> d0(p.size(), -1.0);
@@ -123,7 +83,7 @@ TEST_CASE("sliding along a rigid face is left as it is", "[contact][rigid_face_m
   m->fill_box(base, -1, Vec<2>(0.0, 0.1), Vec<2>(1.2, 0.2));
   m->add_contact(0, base, 0.0);
   // Sliding, and squeezed toward the base so that the lowest centres' domains reach past its face.
-  m->add_fix(std::make_shared<SlotVelocityField<2>>(
+  m->add_fix(std::make_shared<test::NodalVelocityField<2>>(
       [&](const Vec<2>& x) { return Vec<2>(speed, -10.0 * std::max(x[1] - 0.2, 0.0)); }));
   auto& p = m->particles();
   std::vector<double> x0(p.size());

@@ -10,20 +10,6 @@
 
 using namespace seismpm;
 
-namespace {
-
-// The grid edge `side` of axis `axis`, with a uniform compression towards it at strain rate `rate` (1/s):
-// the normal velocity -rate * (distance from the edge), zero beyond it.
-template <int Dim>
-Vec<Dim> towards_edge(const Vec<Dim>& x, int axis, bool upper, double edge, double rate) {
-  Vec<Dim> v = Vec<Dim>::Zero();
-  const double distance = upper ? edge - x[axis] : x[axis] - edge;
-  v[axis] = (upper ? rate : -rate) * std::max(distance, 0.0);
-  return v;
-}
-
-}  // namespace
-
 // The nodes follow v_n = -c d (d: distance from the held edge) exactly, so every centre, wherever its
 // domain lies, moves as forward Euler of that field: d_{k+1} = (1 - c dt) d_k. Linear and uGIMP shapes
 // reproduce a linear field exactly where a particle's domain lies inside the grid; with the mirror
@@ -46,7 +32,7 @@ TEMPLATE_TEST_CASE_SIG("a centre squeezed against a held edge approaches it as t
   m->grid().fix(side, 1u << axis);
   const double edge = upper ? m->grid().domain_upper()[axis] : 0.0;
   m->add_fix(std::make_shared<test::NodalVelocityField<Dim>>(
-      [&](const Vec<Dim>& x) { return towards_edge<Dim>(x, axis, upper, edge, rate); }));
+      [&](const Vec<Dim>& x) { return test::towards_plane<Dim>(x, axis, upper, edge, rate); }));
 
   auto& p = m->particles();
   std::vector<double> d0(p.size());
