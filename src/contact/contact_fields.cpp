@@ -144,6 +144,9 @@ int ContactFields<Dim>::prescribe_rigid_velocities(Particles<Dim>& particles, co
     P.v[p] = motion_[b].current;
     if (!domain.contains(Vec<Dim>(P.x[p] + c.dt * P.v[p]))) leaving = std::min(leaving, p);
   }
+  if (any_rigid_)
+    exclusion_.build(
+        P, grid, rules_, c.dt, [&](int b) { return body_rigid_[b] != 0; }, [&](int b) { return field_of_body_[b]; });
   return leaving;
 }
 

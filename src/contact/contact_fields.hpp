@@ -18,6 +18,7 @@
 #include "core/step_context.hpp"
 #include "node_contact.hpp"
 #include "rigid_body.hpp"
+#include "rigid_exclusion.hpp"
 #include "shared_nodes.hpp"
 
 namespace seismpm {
@@ -52,8 +53,9 @@ class ContactFields {
   // only then does contact act in the step.
   bool prepare(const std::vector<Body>& bodies);
   // Sets v_R (at the middle of the step, so a rigid body travels the integral of its history) on the
-  // rigid particles; zero when `move` is false. Returns the first rigid particle that would leave the
-  // grid in this step, or the particle count.
+  // rigid particles; zero when `move` is false; and the rigid domains that deformable centres keep out
+  // of (exclusion()). Returns the first rigid particle that would leave the grid in this step, or the
+  // particle count.
   int prescribe_rigid_velocities(Particles<Dim>& particles, const Grid<Dim>& grid, const std::vector<Body>& bodies,
                                  const StepContext& c, bool move);
   // Which nodes more than one field touches this step; their slots start at zero.
@@ -90,6 +92,8 @@ class ContactFields {
   // A rigid field is present at the shared node k (its force is the support's to take).
   bool held(int k) const;
   const ContactRules& rules() const { return rules_; }
+  // The rigid particles' domains at the end of this step (set with the rigid velocities).
+  const RigidExclusion<Dim>& exclusion() const { return exclusion_; }
   SharedNodes<Dim>& nodes() { return shared_; }
   const SharedNodes<Dim>& nodes() const { return shared_; }
 
@@ -123,6 +127,7 @@ class ContactFields {
   // shared node: what the next step empties instead of the whole grid.
   std::vector<std::vector<int>> slab_cells_, slab_nodes_;
   std::vector<int> near_cells_;
+  RigidExclusion<Dim> exclusion_;
 };
 
 extern template class ContactFields<2>;

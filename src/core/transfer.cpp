@@ -185,15 +185,15 @@ void Model<Dim>::grid_to_particles(const StepContext& c, bool remap) {
     // already move at the linear d v_1 and never reach it.
     if constexpr (Contact && Shape::K == 3)
       if (slotted && contact_.any_rigid()) mirror_rigid_faces(contact_, G, st[p], f, vl, own_velocity);
-    if (Shape::K > 2 && held.any() && held.near(P.x[p])) {
-      held.mirror(st[p], vl, own_velocity);
-      P.x[p] += dt * vl;
-      P.u[p] += dt * vl;
-      held.keep_inside(P.x[p], P.u[p]);
-      return true;
-    }
-    P.x[p] += dt * vl;
-    P.u[p] += dt * vl;
+    const bool near_held = Shape::K > 2 && held.any() && held.near(P.x[p]);
+    if (near_held) held.mirror(st[p], vl, own_velocity);
+    Vec<Dim> dx = dt * vl;
+    // Nor may it enter a rigid body anywhere else (rigid_exclusion.hpp).
+    if constexpr (Contact)
+      if (slotted && contact_.exclusion().any()) contact_.exclusion().keep_out(f, P.x[p], dx);
+    P.x[p] += dx;
+    P.u[p] += dx;
+    if (near_held) held.keep_inside(P.x[p], P.u[p]);
     return true;
   };
   if (remap) {
