@@ -47,11 +47,13 @@ class RigidExclusion {
     rules_ = &rules;
     for (int d = 0; d < Dim; ++d) cells_[d] = grid.cells(d);
     const CellIndex<Dim> cells(grid);
+    touching_.resize(rules.fields());
+    for (int q = 0; q < rules.fields(); ++q) touching_[q] = in_contact(rules, q);
     const auto& P = particles;
     for (std::size_t p = 0; p < P.size(); ++p) {
       if (!is_rigid(P.body[p])) continue;
       const int q = field_of(P.body[p]);
-      if (!in_contact(rules, q)) continue;
+      if (!touching_[q]) continue;
       Box b;
       b.field = q;
       b.id = P.id[p];
@@ -63,6 +65,7 @@ class RigidExclusion {
     }
     std::sort(keys_.begin(), keys_.end());  // by cell, then by particle order: a fixed visiting order
     cell_index_.emplace(cells);
+    mark_near();
     mark_seams(grid.cell(), P);
   }
   bool any() const { return !boxes_.empty(); }
@@ -71,6 +74,7 @@ class RigidExclusion {
   // centre does not enter a rigid particle's domain it was outside of.
   void keep_out(int field, const Vec<Dim>& x, Vec<Dim>& dx) const {
     Vec<Dim> xn = x + dx;
+    if (!near_[cell_index_->of(xn)]) return;
     bool moved = false;
     for_each_box_near(xn, [&](const Box& b) {
       if (!rules_->glued(field, b.field)) moved |= clip(b, x, xn);
@@ -96,11 +100,9 @@ class RigidExclusion {
       if (!rules.rigid(f) && !rules.glued(f, q)) return true;
     return false;
   }
-  // f(box) for every box whose domain may hold x. A box's centre lies within half a cell of any point
-  // inside it, so its cell is a neighbour of the point's.
-  template <class F>
-  void for_each_box_near(const Vec<Dim>& x, F&& f) const {
-    const std::array<int, Dim> c = cell_index_->coords_of(x);
+  // g(cell) for the cells next to cell coordinates c (c's own included), clipped to the grid.
+  template <class G>
+  void for_each_neighbour_cell(const std::array<int, Dim>& c, G&& g) const {
     std::array<int, Dim> lo, n;
     int count = 1;
     for (int d = 0; d < Dim; ++d) {
@@ -112,10 +114,32 @@ class RigidExclusion {
       std::array<int, Dim> cc;
       int rest = k;
       for (int d = 0; d < Dim; ++d) cc[d] = lo[d] + rest % n[d], rest /= n[d];
-      const int cell = cell_index_->of_coords(cc);
+      g(cell_index_->of_coords(cc));
+    }
+  }
+  // f(box) for every box whose domain may hold x. A box's centre lies within half a cell of any point
+  // inside it, so its cell is a neighbour of the point's.
+  template <class F>
+  void for_each_box_near(const Vec<Dim>& x, F&& f) const {
+    for_each_neighbour_cell(cell_index_->coords_of(x), [&](int cell) {
       for (auto it = std::lower_bound(keys_.begin(), keys_.end(), std::make_pair(cell, -1));
            it != keys_.end() && it->first == cell; ++it)
         f(boxes_[it->second]);
+    });
+  }
+  // near_[cell]: some box's centre lies in a neighbour of the cell, so a point in it may be inside a
+  // box. Nearly every particle of a step is far from any rigid body, and one look-up settles it.
+  void mark_near() {
+    for (int cell : near_marked_) near_[cell] = 0;
+    near_marked_.clear();
+    int total = 1;
+    for (int d = 0; d < Dim; ++d) total *= cells_[d];
+    if (static_cast<int>(near_.size()) != total) near_.assign(total, 0);
+    for (std::size_t k = 0; k < keys_.size(); ++k) {
+      if (k > 0 && keys_[k].first == keys_[k - 1].first) continue;
+      for_each_neighbour_cell(cell_index_->coords(keys_[k].first), [&](int cell) {
+        if (!near_[cell]) near_[cell] = 1, near_marked_.push_back(cell);
+      });
     }
   }
   // Moves xn (from x) back onto the face of box b it entered by, if it ended inside b (a seam with a
@@ -182,6 +206,9 @@ class RigidExclusion {
   std::size_t seams_known_ = 0;
   std::vector<std::pair<int, int>> keys_;  // (cell of the box's centre, box)
   std::optional<CellIndex<Dim>> cell_index_;
+  std::vector<unsigned char> near_;  // per cell (mark_near)
+  std::vector<int> near_marked_;     // the cells near_ marks, to clear at the next build
+  std::vector<char> touching_;       // per field: some deformable field is in contact with it
   std::array<int, Dim> cells_{};
   const ContactRules* rules_ = nullptr;
 };
