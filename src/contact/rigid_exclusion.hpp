@@ -26,6 +26,8 @@
 #include <utility>
 #include <vector>
 
+#include <omp.h>
+
 #include "contact_rules.hpp"
 #include "core/cell_index.hpp"
 #include "core/grid.hpp"
@@ -50,19 +52,33 @@ class RigidExclusion {
     touching_.resize(rules.fields());
     for (int q = 0; q < rules.fields(); ++q) touching_[q] = in_contact(rules, q);
     const auto& P = particles;
-    for (std::size_t p = 0; p < P.size(); ++p) {
-      if (!is_rigid(P.body[p])) continue;
-      const int q = field_of(P.body[p]);
-      if (!touching_[q]) continue;
-      Box b;
-      b.field = q;
-      b.id = P.id[p];
-      b.shift = dt * P.v[p];
-      b.centre = P.x[p] + b.shift;
-      b.half = P.half_width[p] * grid.cell();
-      keys_.emplace_back(cells.of(b.centre), static_cast<int>(boxes_.size()));
-      boxes_.push_back(b);
+    // The rigid particles in contact, in particle order: each thread lists those of its block of a
+    // static schedule, and the lists join in thread order. Scanned serially, the particles of a
+    // 25,000-particle slope kept the other thread waiting for 1 % of the run.
+    const int n = static_cast<int>(P.size()), threads = omp_get_max_threads();
+    found_.resize(threads);
+    for (auto& list : found_) list.clear();
+#pragma omp parallel num_threads(threads)
+    {
+      auto& mine = found_[omp_get_thread_num()];
+#pragma omp for schedule(static)
+      for (int p = 0; p < n; ++p) {
+        const int body = P.body[p];
+        if (is_rigid(body) && touching_[field_of(body)]) mine.push_back(p);
+      }
     }
+    for (const auto& list : found_)
+      for (const int p : list) {
+        const int q = field_of(P.body[p]);
+        Box b;
+        b.field = q;
+        b.id = P.id[p];
+        b.shift = dt * P.v[p];
+        b.centre = P.x[p] + b.shift;
+        b.half = P.half_width[p] * grid.cell();
+        keys_.emplace_back(cells.of(b.centre), static_cast<int>(boxes_.size()));
+        boxes_.push_back(b);
+      }
     std::sort(keys_.begin(), keys_.end());  // by cell, then by particle order: a fixed visiting order
     cell_index_.emplace(cells);
     mark_near();
@@ -122,21 +138,22 @@ class RigidExclusion {
   template <class F>
   void for_each_box_near(const Vec<Dim>& x, F&& f) const {
     for_each_neighbour_cell(cell_index_->coords_of(x), [&](int cell) {
-      for (auto it = std::lower_bound(keys_.begin(), keys_.end(), std::make_pair(cell, -1));
-           it != keys_.end() && it->first == cell; ++it)
-        f(boxes_[it->second]);
+      for (int k = first_key_[cell]; k >= 0 && k < static_cast<int>(keys_.size()) && keys_[k].first == cell; ++k)
+        f(boxes_[keys_[k].second]);
     });
   }
   // near_[cell]: some box's centre lies in a neighbour of the cell, so a point in it may be inside a
   // box. Nearly every particle of a step is far from any rigid body, and one look-up settles it.
+  // first_key_[cell]: the cell's first key, -1 for a cell that holds no box's centre.
   void mark_near() {
-    for (int cell : near_marked_) near_[cell] = 0;
+    for (int cell : near_marked_) near_[cell] = 0, first_key_[cell] = -1;
     near_marked_.clear();
     int total = 1;
     for (int d = 0; d < Dim; ++d) total *= cells_[d];
-    if (static_cast<int>(near_.size()) != total) near_.assign(total, 0);
+    if (static_cast<int>(near_.size()) != total) near_.assign(total, 0), first_key_.assign(total, -1);
     for (std::size_t k = 0; k < keys_.size(); ++k) {
       if (k > 0 && keys_[k].first == keys_[k - 1].first) continue;
+      first_key_[keys_[k].first] = static_cast<int>(k);
       for_each_neighbour_cell(cell_index_->coords(keys_[k].first), [&](int cell) {
         if (!near_[cell]) near_[cell] = 1, near_marked_.push_back(cell);
       });
@@ -206,9 +223,11 @@ class RigidExclusion {
   std::size_t seams_known_ = 0;
   std::vector<std::pair<int, int>> keys_;  // (cell of the box's centre, box)
   std::optional<CellIndex<Dim>> cell_index_;
-  std::vector<unsigned char> near_;  // per cell (mark_near)
-  std::vector<int> near_marked_;     // the cells near_ marks, to clear at the next build
-  std::vector<char> touching_;       // per field: some deformable field is in contact with it
+  std::vector<unsigned char> near_;      // per cell (mark_near)
+  std::vector<int> first_key_;           // per cell (mark_near)
+  std::vector<int> near_marked_;         // the cells near_ marks (every cell with a first key among them)
+  std::vector<char> touching_;           // per field: some deformable field is in contact with it
+  std::vector<std::vector<int>> found_;  // per thread: build's rigid particles in contact
   std::array<int, Dim> cells_{};
   const ContactRules* rules_ = nullptr;
 };

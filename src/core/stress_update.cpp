@@ -116,9 +116,11 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
     // Volume from the (averaged) strain increment: V <- V (1 + tr de) to first order, exactly as det(I + dt L)
     // when nothing is averaged.
     const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
-    if (opened(p)) {
-      // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
-      // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
+    // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
+    // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
+    // Only a compressed particle can close (an opened one's opening is positive): the logarithm is
+    // taken for those alone.
+    if (-trace(de) > 0.0 && opened(p)) {
       const double opening = std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
       const double closing = std::min(-trace(de), opening);
       if (closing > 0.0)

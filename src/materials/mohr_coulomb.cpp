@@ -5,6 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
+
+#include <omp.h>
 
 #include "core/error.hpp"
 #include "principal_stress.hpp"
@@ -271,31 +274,63 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
   return integrate_trial<true>(elastic_trial(stress, de, elastic_.lambda(), 2.0 * elastic_.shear()), plastic);
 }
 
+// Two passes in one parallel region. The first, each thread over its own block of particles (as a
+// static schedule), settles the elastic trials inline and lists the rest in order in its block's part
+// of the scratch list. The second shares the listed returns evenly: the yielding particles of a slope
+// lie together in the cell-sorted order, and left to the thread whose block held them they kept the
+// other one waiting (a fifth of the stress update's time on two threads). Each particle's update is
+// the same function of its own state either way, so the results do not depend on the threads.
 void MohrCoulomb::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
   const bool fixed_strength = !p_.softening;
-#pragma omp parallel for schedule(static)
-  for (int k = 0; k < b.count; ++k) {
-    const int p = b.index[k];
-    const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
-    // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-    Result r;
-    if (trial[4] == 0.0 && trial[5] == 0.0) {  // plane strain: integrate_trial's first case, taken here
-      const PlanePrincipal pp = plane_principal(trial);
-      // Most updates are elastic: decided inline, by the test the full update makes (plastic_tables),
-      // they skip its call and its result passed through memory.
-      if (fixed_strength && elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
-        b.stress[p] = trial;
-        b.yield[p] = 0;
-        continue;
+  std::vector<int>& deferred = deferred_;
+  deferred.resize(b.count);
+  const int threads = omp_get_max_threads();
+  std::vector<int> listed(threads + 1, 0);
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+    const int lo = static_cast<int>(static_cast<long>(b.count) * t / nt);
+    const int hi = static_cast<int>(static_cast<long>(b.count) * (t + 1) / nt);
+    int found = 0;
+    for (int k = lo; k < hi; ++k) {
+      const int p = b.index[k];
+      const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+      // Most updates are elastic: decided inline by the test the full update makes (plastic_tables),
+      // plane strain only (a 3D trial takes integrate_trial's general path in the second pass).
+      if (fixed_strength && trial[4] == 0.0 && trial[5] == 0.0) {
+        const PlanePrincipal pp = plane_principal(trial);
+        if (elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
+          b.stress[p] = trial;
+          b.yield[p] = 0;
+          continue;
+        }
       }
-      r = integrate_plane<false>(trial, pp, b.plastic_strain[p]);
-    } else {
-      r = integrate_trial<false>(trial, b.plastic_strain[p]);
+      deferred[lo + found++] = k;
     }
-    b.stress[p] = r.stress;
-    b.plastic_strain[p] += r.shear_increment;
-    b.yield[p] = r.kind != Return::Elastic;
+    listed[t + 1] = found;
+#pragma omp barrier
+    // Block j's listed entries are deferred[lo_j, lo_j + listed[j + 1]); this thread takes the
+    // entries [first, last) of their concatenation.
+    int total = 0;
+    for (int j = 0; j < nt; ++j) total += listed[j + 1];
+    const int first = static_cast<int>(static_cast<long>(total) * t / nt);
+    const int last = static_cast<int>(static_cast<long>(total) * (t + 1) / nt);
+    int block = 0, before = 0;  // entries in the blocks before `block`
+    for (int e = first; e < last; ++e) {
+      while (e >= before + listed[block + 1]) before += listed[++block];
+      const int block_lo = static_cast<int>(static_cast<long>(b.count) * block / nt);
+      const int k = deferred[block_lo + (e - before)];
+      const int p = b.index[k];
+      const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+      // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
+      const Result r = trial[4] == 0.0 && trial[5] == 0.0
+                           ? integrate_plane<false>(trial, plane_principal(trial), b.plastic_strain[p])
+                           : integrate_trial<false>(trial, b.plastic_strain[p]);
+      b.stress[p] = r.stress;
+      b.plastic_strain[p] += r.shear_increment;
+      b.yield[p] = r.kind != Return::Elastic;
+    }
   }
 }
 

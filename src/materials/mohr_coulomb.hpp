@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "core/material.hpp"
 #include "linear_elastic.hpp"
@@ -101,6 +102,7 @@ class MohrCoulomb : public Material {
   ElasticConstants elastic_;
   ReturnTables fixed_;                                    // without softening
   double volumetric_compliance_ = 0, inverse_two_g_ = 0;  // lambda / (3 lambda + 2G), 1 / 2G
+  mutable std::vector<int> deferred_;                     // update_stress's scratch: the returns to share
 };
 
 }  // namespace seismpm
