@@ -275,15 +275,15 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
 }
 
 // Two passes in one parallel region. The first, each thread over its own block of particles (as a
-// static schedule), settles the elastic trials inline and lists the rest in order in its block's part
-// of the scratch list. The second shares the listed returns evenly: the yielding particles of a slope
-// lie together in the cell-sorted order, and left to the thread whose block held them they kept the
-// other one waiting (a fifth of the stress update's time on two threads). Each particle's update is
-// the same function of its own state either way, so the results do not depend on the threads.
+// static schedule), settles the elastic trials inline and lists the rest, with their trials, in order
+// in its block's part of the scratch list. The second shares the listed returns evenly: the yielding
+// particles of a slope lie together in the cell-sorted order, and left to the thread whose block held
+// them they kept the other one waiting. Each particle's update is the same function of its own state
+// either way, so the results do not depend on the threads.
 void MohrCoulomb::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
   const bool fixed_strength = !p_.softening;
-  std::vector<int>& deferred = deferred_;
+  std::vector<Deferred>& deferred = deferred_;
   deferred.resize(b.count);
   const int threads = omp_get_max_threads();
   std::vector<int> listed(threads + 1, 0);
@@ -295,18 +295,21 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
     int found = 0;
     for (int k = lo; k < hi; ++k) {
       const int p = b.index[k];
-      const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
-      // Most updates are elastic: decided inline by the test the full update makes (plastic_tables),
-      // plane strain only (a 3D trial takes integrate_trial's general path in the second pass).
-      if (fixed_strength && trial[4] == 0.0 && trial[5] == 0.0) {
-        const PlanePrincipal pp = plane_principal(trial);
-        if (elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
-          b.stress[p] = trial;
+      Deferred& d = deferred[lo + found];
+      d.trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+      d.plane = d.trial[4] == 0.0 && d.trial[5] == 0.0;  // plane strain: integrate_trial's first case
+      if (d.plane) {
+        d.principal = plane_principal(d.trial);
+        // Most updates are elastic: decided inline, by the test the full update makes (plastic_tables).
+        const PlanePrincipal& pp = d.principal;
+        if (fixed_strength && elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
+          b.stress[p] = d.trial;
           b.yield[p] = 0;
           continue;
         }
       }
-      deferred[lo + found++] = k;
+      d.k = k;
+      ++found;
     }
     listed[t + 1] = found;
 #pragma omp barrier
@@ -319,14 +322,11 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
     int block = 0, before = 0;  // entries in the blocks before `block`
     for (int e = first; e < last; ++e) {
       while (e >= before + listed[block + 1]) before += listed[++block];
-      const int block_lo = static_cast<int>(static_cast<long>(b.count) * block / nt);
-      const int k = deferred[block_lo + (e - before)];
-      const int p = b.index[k];
-      const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+      const Deferred& d = deferred[static_cast<long>(b.count) * block / nt + (e - before)];
+      const int p = b.index[d.k];
       // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-      const Result r = trial[4] == 0.0 && trial[5] == 0.0
-                           ? integrate_plane<false>(trial, plane_principal(trial), b.plastic_strain[p])
-                           : integrate_trial<false>(trial, b.plastic_strain[p]);
+      const Result r = d.plane ? integrate_plane<false>(d.trial, d.principal, b.plastic_strain[p])
+                               : integrate_trial<false>(d.trial, b.plastic_strain[p]);
       b.stress[p] = r.stress;
       b.plastic_strain[p] += r.shear_increment;
       b.yield[p] = r.kind != Return::Elastic;

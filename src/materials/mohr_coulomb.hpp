@@ -102,7 +102,14 @@ class MohrCoulomb : public Material {
   ElasticConstants elastic_;
   ReturnTables fixed_;                                    // without softening
   double volumetric_compliance_ = 0, inverse_two_g_ = 0;  // lambda / (3 lambda + 2G), 1 / 2G
-  mutable std::vector<int> deferred_;                     // update_stress's scratch: the returns to share
+  // update_stress's scratch: the trials that need a return, to share among the threads.
+  struct Deferred {
+    Sym trial;
+    PlanePrincipal principal;  // with `plane`
+    bool plane;
+    int k;  // in the batch
+  };
+  mutable std::vector<Deferred> deferred_;
 };
 
 }  // namespace seismpm
