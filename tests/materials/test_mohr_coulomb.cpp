@@ -4,6 +4,9 @@
 #include <cmath>
 #include <numbers>
 #include <random>
+#include <vector>
+
+#include <omp.h>
 
 #include "core/error.hpp"
 #include "element_test.hpp"
@@ -197,4 +200,73 @@ TEST_CASE("Mohr-Coulomb parameters out of range are refused by name", "[material
   p.residual_cohesion = 2 * p.cohesion;
   p.softening_strain = 0.1;
   CHECK_THROWS_WITH(MohrCoulomb(p), Catch::Contains("residual cohesion"));
+}
+
+// The batch update settles elastic trials per thread block and shares the plastic returns among the
+// threads: every particle must get exactly what a batch of itself alone gives (and a return exactly
+// where integrate() makes one), whatever the number of threads and however the yielding particles are
+// spread over the blocks (here all in the first third).
+TEST_CASE("the batch update is one integrate() per particle for any number of threads",
+          "[materials][mohr_coulomb][parallel]") {
+  const int saved = omp_get_max_threads();
+  for (const bool softening : {false, true}) {
+    auto p = soil(5e3, 30, 5, 0.0);
+    p.softening = softening;
+    p.residual_cohesion = 1e3;
+    p.residual_friction = 25;
+    p.softening_strain = 0.05;
+    const MohrCoulomb mc(p);
+    const int n = 900;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    std::vector<Sym> stress(n), de(n);
+    std::vector<double> plastic(n);
+    for (int k = 0; k < n; ++k) {
+      stress[k] = diagonal(-100e3, -100e3, -100e3);
+      // Large increments (plastic) in the first third, small ones (elastic) after; a third of them 3D.
+      const double size = k < n / 3 ? 2e-3 : 1e-6;
+      for (int i = 0; i < 4; ++i) de[k][i] = size * u(rng);
+      de[k][4] = de[k][5] = k % 3 == 0 ? size * u(rng) : 0.0;
+      plastic[k] = 0.02 * (u(rng) + 1.0);
+    }
+    // The batch visits particles in a shuffled order, as a material's list over a sorted model would.
+    std::vector<int> index(n);
+    for (int k = 0; k < n; ++k) index[k] = (k * 7) % n;
+    auto update = [&](const int* list, int count, std::vector<Sym>& s, std::vector<double>& e,
+                      std::vector<std::uint8_t>& yield) {
+      StressUpdate b;
+      b.index = list;
+      b.count = count;
+      b.stress = s.data();
+      b.strain_increment = de.data();
+      b.plastic_strain = e.data();
+      b.yield = yield.data();
+      mc.update_stress(b);
+    };
+    omp_set_num_threads(1);
+    std::vector<Sym> s1 = stress;
+    std::vector<double> e1 = plastic;
+    std::vector<std::uint8_t> yield1(n, 2);
+    for (int k = 0; k < n; ++k) update(&k, 1, s1, e1, yield1);
+    for (const int threads : {1, 2, 3, 5}) {
+      omp_set_num_threads(threads);
+      std::vector<Sym> s = stress;
+      std::vector<double> e = plastic;
+      std::vector<std::uint8_t> yield(n, 2);
+      update(index.data(), n, s, e, yield);
+      int plastic_count = 0, mismatches = 0, kinds = 0;
+      for (int k = 0; k < n; ++k) {
+        const bool yielded = mc.integrate(stress[k], de[k], plastic[k]).kind != MohrCoulomb::Return::Elastic;
+        plastic_count += yielded;
+        kinds += yield1[k] == yielded;
+        mismatches += !(s[k] == s1[k] && e[k] == e1[k] && yield[k] == yield1[k]);
+      }
+      CHECK(kinds == n);
+      CAPTURE(softening, threads, plastic_count);
+      CHECK(mismatches == 0);
+      CHECK(plastic_count > n / 6);      // the test exercises the shared returns ...
+      CHECK(plastic_count < 2 * n / 3);  // ... and the inline elastic ones
+    }
+  }
+  omp_set_num_threads(saved);
 }
