@@ -69,9 +69,8 @@ class RigidExclusion {
     }
     for (const auto& list : found_)
       for (const int p : list) {
-        const int q = field_of(P.body[p]);
         Box b;
-        b.field = q;
+        b.field = field_of(P.body[p]);
         b.id = P.id[p];
         b.shift = dt * P.v[p];
         b.centre = P.x[p] + b.shift;

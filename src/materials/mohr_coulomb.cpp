@@ -284,37 +284,36 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
   const bool fixed_strength = !p_.softening;
   std::vector<Deferred>& deferred = deferred_;
+  std::vector<int>& listed = listed_;
   deferred.resize(b.count);
   const int threads = omp_get_max_threads();
-  std::vector<int> listed(threads + 1, 0);
+  listed.assign(threads + 1, 0);
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    const int lo = static_cast<int>(static_cast<long>(b.count) * t / nt);
-    const int hi = static_cast<int>(static_cast<long>(b.count) * (t + 1) / nt);
+    const auto block_start = [&](int j) { return static_cast<int>(static_cast<long>(b.count) * j / nt); };
+    const int lo = block_start(t), hi = block_start(t + 1);
     int found = 0;
     for (int k = lo; k < hi; ++k) {
       const int p = b.index[k];
-      Deferred& d = deferred[lo + found];
-      d.trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
-      d.plane = d.trial[4] == 0.0 && d.trial[5] == 0.0;  // plane strain: integrate_trial's first case
-      if (d.plane) {
-        d.principal = plane_principal(d.trial);
+      const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+      const bool plane = trial[4] == 0.0 && trial[5] == 0.0;  // plane strain: integrate_trial's first case
+      PlanePrincipal pp{};
+      if (plane) {
+        pp = plane_principal(trial);
         // Most updates are elastic: decided inline, by the test the full update makes (plastic_tables).
-        const PlanePrincipal& pp = d.principal;
         if (fixed_strength && elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
-          b.stress[p] = d.trial;
+          b.stress[p] = trial;
           b.yield[p] = 0;
           continue;
         }
       }
-      d.k = k;
-      ++found;
+      deferred[lo + found++] = Deferred{trial, pp, plane, k};
     }
     listed[t + 1] = found;
 #pragma omp barrier
-    // Block j's listed entries are deferred[lo_j, lo_j + listed[j + 1]); this thread takes the
-    // entries [first, last) of their concatenation.
+    // Block j's listed entries are deferred[block_start(j), block_start(j) + listed[j + 1]); this
+    // thread takes the entries [first, last) of their concatenation.
     int total = 0;
     for (int j = 0; j < nt; ++j) total += listed[j + 1];
     const int first = static_cast<int>(static_cast<long>(total) * t / nt);
@@ -322,7 +321,7 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
     int block = 0, before = 0;  // entries in the blocks before `block`
     for (int e = first; e < last; ++e) {
       while (e >= before + listed[block + 1]) before += listed[++block];
-      const Deferred& d = deferred[static_cast<long>(b.count) * block / nt + (e - before)];
+      const Deferred& d = deferred[block_start(block) + (e - before)];
       const int p = b.index[d.k];
       // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
       const Result r = d.plane ? integrate_plane<false>(d.trial, d.principal, b.plastic_strain[p])

@@ -110,6 +110,7 @@ class MohrCoulomb : public Material {
     int k;  // in the batch
   };
   mutable std::vector<Deferred> deferred_;
+  mutable std::vector<int> listed_;  // per thread t, at t + 1: how many of its block's entries deferred_ holds
 };
 
 }  // namespace seismpm
