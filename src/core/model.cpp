@@ -358,7 +358,7 @@ StepContext Model<Dim>::next_step(double dt_max) {
   if (particles_.size() == 0) throw InputError("model: no particles to step");
   const double dt = time_step_.next(settings_.fixed_dt > 0.0 ? settings_.fixed_dt : stable_time_step(), dt_max);
   if (time_step_.collapsed(dt, dt_max)) {
-    const auto [fastest, speed] = fastest_signal(particles_, constants_, grid_.cell());
+    const auto [fastest, speed] = fastest_signal(particles_, constants_, grid_.cell(), closable_particles());
     std::ostringstream os;
     os << "the time step collapsed to " << dt << " s (first step " << time_step_.first()
        << " s): wave speed + velocity " << speed << " m/s";
@@ -436,7 +436,7 @@ void Model<Dim>::run(double duration) {
 
 template <int Dim>
 double Model<Dim>::stable_time_step() const {
-  return seismpm::stable_time_step(particles_, constants_, settings_.cfl, grid_.cell());
+  return seismpm::stable_time_step(particles_, constants_, settings_.cfl, grid_.cell(), closable_particles());
 }
 
 template <int Dim>

@@ -242,6 +242,22 @@ class Model {
     return settings_.crack_closure && constants_.tensionless[m] &&
            particles_.volume[p] * constants_.initial_density[m] > (1.0 + 1e-9) * particles_.mass[p];
   }
+  // The volume a particle has without stress: m / rho_0 for a tensionless material (what it may close
+  // back to), its volume for any other (it has nothing to close).
+  double free_volume(std::size_t p) const {
+    const int m = particles_.material[p];
+    return constants_.tensionless[m] ? particles_.mass[p] / constants_.initial_density[m] : particles_.volume[p];
+  }
+  // With the cell-averaged volumetric strain: a compressed tensionless particle closes where its cell
+  // is open (its volume above its stress-free volume; cell sums from sum_cell_dilation).
+  bool closes_by_cell(std::size_t p, int cell) const {
+    return settings_.crack_closure && constants_.tensionless[particles_.material[p]] &&
+           cell_volume_[cell] > (1.0 + 1e-9) * cell_free_volume_[cell];
+  }
+  // Per particle, 1 where crack closure may leave it stress-free (looser than its initial density, in
+  // an open cell), for the time step; nullptr where closure is judged particle by particle or no
+  // particle is looser (stress_update.cpp).
+  const char* closable_particles() const;
 
   ModelSettings<Dim> settings_;
   Grid<Dim> grid_;
@@ -267,7 +283,12 @@ class Model {
   bool active_valid_ = false;
   std::vector<Sym> strain_increment_;
   std::vector<Eigen::Vector3d> spin_;  // dt skw(L) as (w_xy, w_yz, w_xz)
-  std::vector<double> cell_volume_, cell_dilation_;
+  std::vector<double> cell_volume_, cell_dilation_, cell_free_volume_;
+  // closable_particles' scratch (the time step runs on a const model).
+  mutable std::vector<double> open_volume_, open_free_volume_;
+  mutable std::vector<int> open_cell_of_;
+  mutable std::vector<char> open_mark_;
+  mutable std::vector<char> may_close_;
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;
   mutable std::vector<int> index_of_id_;  // rebuilt on demand after a sort

@@ -77,6 +77,7 @@ void Model<Dim>::sum_cell_dilation() {
   const int cells = grid_.cell_count();
   cell_volume_.assign(cells, 0.0);
   cell_dilation_.assign(cells, 0.0);
+  cell_free_volume_.assign(cells, 0.0);
   const auto& P = particles_;
   const auto& cell_of = support_.cell_of;
   support_.schedule.for_each_in_own_cell([&](int p) {
@@ -84,6 +85,7 @@ void Model<Dim>::sum_cell_dilation() {
       if (contact_.any_rigid() && contact_.rigid(P.body[p])) return;  // no strain of their own
     cell_volume_[cell_of[p]] += P.volume[p];
     cell_dilation_[cell_of[p]] += P.volume[p] * trace(strain_increment_[p]);
+    cell_free_volume_[cell_of[p]] += free_volume(p);
   });
 }
 
@@ -119,17 +121,71 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
     // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
     // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
     // Only a compressed particle can close (an opened one's opening is positive): the logarithm is
-    // taken for those alone.
-    if (-trace(de) > 0.0 && opened(p)) {
-      const double opening = std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
+    // taken for those alone. With the cell-averaged volumetric strain the opening is the cell's, as the
+    // volumetric increment is: judged particle by particle, the volume each particle drifts to in a
+    // cell of unequal neighbours opened some while others carried the load, and stress-free particles
+    // in a resting deposit's surface kept it creeping (docs/kernel.md).
+    if (-trace(de) > 0.0 && (average ? closes_by_cell(p, cell_of[p]) : opened(p))) {
+      const double opening = average ? std::log(cell_volume_[cell_of[p]] / cell_free_volume_[cell_of[p]])
+                                     : std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
       const double closing = std::min(-trace(de), opening);
-      if (closing > 0.0)
-        for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
+      for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
     }
     P.volume[p] *= F.template topLeftCorner<Dim, Dim>().determinant();
     if (max_volume_ratio > 0.0)
       P.volume[p] = std::min(P.volume[p], max_volume_ratio * P.mass[p] / constants_.initial_density[P.material[p]]);
   }
+}
+
+// The time step's view of crack closure by cell: each particle's cell from its position (the cell the
+// stress update will average over) and, for the cells that hold a particle looser than its initial
+// density (the only ones the answer matters for), the cells' volumes summed in particle order (the same
+// for any number of threads and after a restart). nullptr where no particle is looser: then every
+// particle counts at its current density anyway.
+template <int Dim>
+const char* Model<Dim>::closable_particles() const {
+  if (!(settings_.cell_volumetric_strain && settings_.crack_closure && constants_.any_tensionless)) return nullptr;
+  const int n = static_cast<int>(particles_.size());
+  const CellIndex<Dim> cells(grid_);
+  const auto& P = particles_;
+  const auto& C = constants_;
+  const bool any_rigid = contact_.any_rigid();
+  if (static_cast<int>(open_volume_.size()) != grid_.cell_count()) {
+    open_volume_.assign(grid_.cell_count(), 0.0);
+    open_free_volume_.assign(grid_.cell_count(), 0.0);
+    open_mark_.assign(grid_.cell_count(), 0);
+  }
+  open_cell_of_.resize(n);
+  may_close_.resize(n);
+  int looser = 0;
+#pragma omp parallel for schedule(static) reduction(+ : looser)
+  for (int p = 0; p < n; ++p) {
+    open_cell_of_[p] = cells.of(P.x[p]);
+    const int m = P.material[p];
+    const bool loose =
+        C.tensionless[m] && P.volume[p] * C.initial_density[m] > P.mass[p] && !(any_rigid && contact_.rigid(P.body[p]));
+    may_close_[p] = loose;  // for now: looser than its initial density
+    looser += loose;
+  }
+  if (looser == 0) return nullptr;
+  for (int p = 0; p < n; ++p)
+    if (may_close_[p]) {
+      const int c = open_cell_of_[p];
+      open_mark_[c] = 1, open_volume_[c] = open_free_volume_[c] = 0.0;
+    }
+  for (int p = 0; p < n; ++p) {
+    const int c = open_cell_of_[p];
+    if (!open_mark_[c] || (any_rigid && contact_.rigid(P.body[p]))) continue;
+    open_volume_[c] += P.volume[p];
+    open_free_volume_[c] += free_volume(p);
+  }
+  for (int p = 0; p < n; ++p)
+    if (may_close_[p]) {
+      const int c = open_cell_of_[p];
+      may_close_[p] = open_volume_[c] > (1.0 + 1e-9) * open_free_volume_[c];
+    }
+  for (int p = 0; p < n; ++p) open_mark_[open_cell_of_[p]] = 0;
+  return may_close_.data();
 }
 
 // Each material updates its own particles' stresses in one call: no virtual call per particle.
@@ -201,5 +257,7 @@ template void Model<2>::rayleigh_stresses(const StepContext&);
 template void Model<3>::rayleigh_stresses(const StepContext&);
 template void Model<2>::rebuild_material_lists();
 template void Model<3>::rebuild_material_lists();
+template const char* Model<2>::closable_particles() const;
+template const char* Model<3>::closable_particles() const;
 
 }  // namespace seismpm

@@ -18,6 +18,7 @@ struct MaterialConstants {
   std::vector<char> tensionless;
   std::vector<double> rayleigh_alpha, rayleigh_beta;  // 1/s, s
   bool any_rayleigh = false;                          // some material is Rayleigh-damped
+  bool any_tensionless = false;                       // some material has no tensile strength
   bool crack_closure = true;                          // ModelSettings::crack_closure (the time step reads it)
   void add(const Material& m) {
     p_wave_modulus.push_back(m.p_wave_modulus());
@@ -28,6 +29,7 @@ struct MaterialConstants {
     rayleigh_alpha.push_back(m.rayleigh().alpha);
     rayleigh_beta.push_back(m.rayleigh().beta);
     any_rayleigh = any_rayleigh || m.rayleigh().any();
+    any_tensionless = any_tensionless || m.tensionless();
   }
 };
 
@@ -39,11 +41,15 @@ struct MaterialConstants {
 // intact soil's, for no stiffness they had.
 // One square root (sqrt is monotonic, so sqrt(max(a, b)) = max(sqrt a, sqrt b) exactly) and a select
 // instead of a branch: this runs for every particle on every step.
+// `may_close`: false where the particle's cell is not open (closure judged by the cell, with the
+// cell-averaged volumetric strain): a particle looser than its own initial density there is loaded
+// by compression like any other, at sqrt(M / rho).
 template <int Dim>
-[[gnu::always_inline]] inline double wave_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p) {
+[[gnu::always_inline]] inline double wave_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p,
+                                                bool may_close = true) {
   const int m = P.material[p];
   const double rho = P.density(p), rho0 = c.initial_density[m], M = c.p_wave_modulus[m];
-  const bool opened = c.crack_closure & (c.tensionless[m] != 0) & (rho * (1.0 + 1e-9) < rho0);
+  const bool opened = may_close & c.crack_closure & (c.tensionless[m] != 0) & (rho * (1.0 + 1e-9) < rho0);
   return std::sqrt(opened ? std::max(M / rho0, c.shear_modulus[m] / rho) : M / rho);
 }
 
@@ -55,21 +61,24 @@ template <int Dim>
 // the next one's.
 template <int Dim>
 [[gnu::always_inline]] inline double signal_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p,
-                                                  double cell) {
+                                                  double cell, bool may_close = true) {
   const int m = P.material[p];
-  const double s = wave_speed(P, c, p) + P.v[p].norm();
+  const double s = wave_speed(P, c, p, may_close) + P.v[p].norm();
   if (!(c.rayleigh_beta[m] > 0.0)) return s;
   const double xi = c.rayleigh_beta[m] * s / cell;
   return s * (std::sqrt(1.0 + xi * xi) + xi);
 }
 
-// The CFL time step of the particles' current state.
+// The CFL time step of the particles' current state. `may_close` (per particle, optional): where it
+// is 0 an opened particle counts as loaded (wave_speed).
 template <int Dim>
-double stable_time_step(const Particles<Dim>& particles, const MaterialConstants& c, double cfl, double cell);
+double stable_time_step(const Particles<Dim>& particles, const MaterialConstants& c, double cfl, double cell,
+                        const char* may_close = nullptr);
 
 // The particle with the fastest signal, and that speed (the one that sets the CFL time step).
 template <int Dim>
-std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c, double cell);
+std::pair<std::size_t, double> fastest_signal(const Particles<Dim>& particles, const MaterialConstants& c, double cell,
+                                              const char* may_close = nullptr);
 
 template <int Dim>
 class CheckpointAccess;  // reads and restores the private state (src/run/checkpoint.cpp)
@@ -93,9 +102,11 @@ class TimeStepControl {
   double first_ = 0.0;
 };
 
-extern template double stable_time_step<2>(const Particles<2>&, const MaterialConstants&, double, double);
-extern template double stable_time_step<3>(const Particles<3>&, const MaterialConstants&, double, double);
-extern template std::pair<std::size_t, double> fastest_signal<2>(const Particles<2>&, const MaterialConstants&, double);
-extern template std::pair<std::size_t, double> fastest_signal<3>(const Particles<3>&, const MaterialConstants&, double);
+extern template double stable_time_step<2>(const Particles<2>&, const MaterialConstants&, double, double, const char*);
+extern template double stable_time_step<3>(const Particles<3>&, const MaterialConstants&, double, double, const char*);
+extern template std::pair<std::size_t, double> fastest_signal<2>(const Particles<2>&, const MaterialConstants&, double,
+                                                                 const char*);
+extern template std::pair<std::size_t, double> fastest_signal<3>(const Particles<3>&, const MaterialConstants&, double,
+                                                                 const char*);
 
 }  // namespace seismpm
