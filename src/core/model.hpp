@@ -287,7 +287,8 @@ class Model {
   // closable_particles' scratch (the time step runs on a const model).
   mutable std::vector<double> open_volume_, open_free_volume_;
   mutable std::vector<int> open_cell_of_;
-  mutable std::vector<char> open_mark_;
+  mutable std::vector<unsigned> open_stamp_of_;  // the pass that last cleared each cell
+  mutable unsigned open_stamp_ = 0;
   mutable std::vector<char> may_close_;
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;

@@ -138,10 +138,11 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
 }
 
 // The time step's view of crack closure by cell: each particle's cell from its position (the cell the
-// stress update will average over) and, for the cells that hold a particle looser than its initial
-// density (the only ones the answer matters for), the cells' volumes summed in particle order (the same
-// for any number of threads and after a restart). nullptr where no particle is looser: then every
-// particle counts at its current density anyway.
+// stress update will average over), the occupied cells' volumes summed in one serial pass in particle
+// order (the same for any number of threads and after a restart; a cell is cleared when the pass first
+// meets it this step, by a stamp, not by a sweep of the grid), and per particle looser than its initial
+// density whether its cell is open. nullptr where no particle is looser: every particle then counts at
+// its current density anyway.
 template <int Dim>
 const char* Model<Dim>::closable_particles() const {
   if (!(settings_.cell_volumetric_strain && settings_.crack_closure && constants_.any_tensionless)) return nullptr;
@@ -150,11 +151,6 @@ const char* Model<Dim>::closable_particles() const {
   const auto& P = particles_;
   const auto& C = constants_;
   const bool any_rigid = contact_.any_rigid();
-  if (static_cast<int>(open_volume_.size()) != grid_.cell_count()) {
-    open_volume_.assign(grid_.cell_count(), 0.0);
-    open_free_volume_.assign(grid_.cell_count(), 0.0);
-    open_mark_.assign(grid_.cell_count(), 0);
-  }
   open_cell_of_.resize(n);
   may_close_.resize(n);
   int looser = 0;
@@ -168,23 +164,25 @@ const char* Model<Dim>::closable_particles() const {
     looser += loose;
   }
   if (looser == 0) return nullptr;
-  for (int p = 0; p < n; ++p)
-    if (may_close_[p]) {
-      const int c = open_cell_of_[p];
-      open_mark_[c] = 1, open_volume_[c] = open_free_volume_[c] = 0.0;
-    }
+  if (static_cast<int>(open_stamp_of_.size()) != grid_.cell_count() || ++open_stamp_ == 0) {
+    open_volume_.assign(grid_.cell_count(), 0.0);
+    open_free_volume_.assign(grid_.cell_count(), 0.0);
+    open_stamp_of_.assign(grid_.cell_count(), 0u);
+    open_stamp_ = 1;
+  }
   for (int p = 0; p < n; ++p) {
+    if (any_rigid && contact_.rigid(P.body[p])) continue;
     const int c = open_cell_of_[p];
-    if (!open_mark_[c] || (any_rigid && contact_.rigid(P.body[p]))) continue;
+    if (open_stamp_of_[c] != open_stamp_) open_stamp_of_[c] = open_stamp_, open_volume_[c] = open_free_volume_[c] = 0.0;
     open_volume_[c] += P.volume[p];
     open_free_volume_[c] += free_volume(p);
   }
+#pragma omp parallel for schedule(static)
   for (int p = 0; p < n; ++p)
     if (may_close_[p]) {
       const int c = open_cell_of_[p];
       may_close_[p] = open_volume_[c] > (1.0 + 1e-9) * open_free_volume_[c];
     }
-  for (int p = 0; p < n; ++p) open_mark_[open_cell_of_[p]] = 0;
   return may_close_.data();
 }
 
