@@ -39,7 +39,8 @@ const Key kModelKeys[] = {
                  "average the volumetric strain increment over each cell (B-bar style, against volumetric locking)"),
     arg::boolean("crack_closure", kKernel.crack_closure,
                  "a tensionless particle looser than its initial density closes that opening first when compressed, "
-                 "without raising its mean stress"),
+                 "without raising its mean stress; with `cell_volumetric_strain`, the opening is its cell's (the "
+                 "particles' volumes in the cell against their stress-free volumes)"),
     arg::boolean("check_memory", kKernel.check_memory,
                  "refuse a grid or a body whose arrays need more memory than the machine has available now (the "
                  "error gives both figures); false builds it anyway"),
