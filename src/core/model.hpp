@@ -242,6 +242,8 @@ class Model {
     return settings_.crack_closure && constants_.tensionless[m] &&
            particles_.volume[p] * constants_.initial_density[m] > (1.0 + 1e-9) * particles_.mass[p];
   }
+  // A volume above its stress-free volume by more than round-off: something opened to close.
+  static bool exceeds_free_volume(double volume, double free_volume) { return volume > (1.0 + 1e-9) * free_volume; }
   // The volume a particle has without stress: m / rho_0 for a tensionless material (what it may close
   // back to), its volume for any other (it has nothing to close).
   double free_volume(std::size_t p) const {
@@ -252,7 +254,7 @@ class Model {
   // is open (its volume above its stress-free volume; cell sums from sum_cell_dilation).
   bool closes_by_cell(std::size_t p, int cell) const {
     return settings_.crack_closure && constants_.tensionless[particles_.material[p]] &&
-           cell_volume_[cell] > (1.0 + 1e-9) * cell_free_volume_[cell];
+           exceeds_free_volume(cell_volume_[cell], cell_free_volume_[cell]);
   }
   // Per particle, 1 where crack closure may leave it stress-free (looser than its initial density, in
   // an open cell), for the time step; nullptr where closure is judged particle by particle or no

@@ -149,7 +149,6 @@ const char* Model<Dim>::closable_particles() const {
   const int n = static_cast<int>(particles_.size());
   const CellIndex<Dim> cells(grid_);
   const auto& P = particles_;
-  const auto& C = constants_;
   const bool any_rigid = contact_.any_rigid();
   open_cell_of_.resize(n);
   may_close_.resize(n);
@@ -157,9 +156,7 @@ const char* Model<Dim>::closable_particles() const {
 #pragma omp parallel for schedule(static) reduction(+ : looser)
   for (int p = 0; p < n; ++p) {
     open_cell_of_[p] = cells.of(P.x[p]);
-    const int m = P.material[p];
-    const bool loose =
-        C.tensionless[m] && P.volume[p] * C.initial_density[m] > P.mass[p] && !(any_rigid && contact_.rigid(P.body[p]));
+    const bool loose = opened(p) && !(any_rigid && contact_.rigid(P.body[p]));
     may_close_[p] = loose;  // for now: looser than its initial density
     looser += loose;
   }
@@ -181,7 +178,7 @@ const char* Model<Dim>::closable_particles() const {
   for (int p = 0; p < n; ++p)
     if (may_close_[p]) {
       const int c = open_cell_of_[p];
-      may_close_[p] = open_volume_[c] > (1.0 + 1e-9) * open_free_volume_[c];
+      may_close_[p] = exceeds_free_volume(open_volume_[c], open_free_volume_[c]);
     }
   return may_close_.data();
 }

@@ -19,21 +19,33 @@ struct Cycle {
   double net_volumetric;     // net volumetric strain of the block at the end
 };
 
-// Opens a Mohr-Coulomb block (tension 0) by 4 % in volume, closes it back and then compresses it
-// by 0.4 % more.
-Cycle open_close_compress(bool crack_closure) {
+// The driven blocks below: a 2 m grid of 0.1 m cells at a fixed step, and a Mohr-Coulomb soil
+// without tensile strength (the block fills 0.8-1.2 m, 2 x 2 particles per cell).
+ModelSettings<2> block_settings(bool crack_closure) {
   ModelSettings<2> s;
   s.lower = Vec<2>::Zero();
   s.upper = Vec<2>::Constant(2.0);
   s.cell = 0.1;
   s.fixed_dt = 1e-4;
   s.crack_closure = crack_closure;
-  Model<2> m(s);
+  return s;
+}
+MohrCoulombParameters tensionless_soil() {
   MohrCoulombParameters mc;
   mc.density = 1000, mc.young = 1e7, mc.poisson = 0.3, mc.cohesion = 5e3, mc.friction = 30, mc.tension = 0;
+  return mc;
+}
+void fill_block(Model<2>& m, const MohrCoulombParameters& mc) {
   const int mat = m.add_material(std::make_shared<MohrCoulomb>(mc));
-  const int body = m.add_body("soil", 2);
-  m.fill_box(body, mat, Vec<2>::Constant(0.8), Vec<2>::Constant(1.2));
+  m.fill_box(m.add_body("soil", 2), mat, Vec<2>::Constant(0.8), Vec<2>::Constant(1.2));
+}
+
+// Opens a Mohr-Coulomb block (tension 0) by 4 % in volume, closes it back and then compresses it
+// by 0.4 % more.
+Cycle open_close_compress(bool crack_closure) {
+  Model<2> m(block_settings(crack_closure));
+  const MohrCoulombParameters mc = tensionless_soil();
+  fill_block(m, mc);
   // A uniform dilation v = rate (x - centre): every particle sees the same volumetric strain rate.
   auto drive = std::make_shared<test::NodalVelocityField<2>>(nullptr);
   m.add_fix(drive);
@@ -99,18 +111,11 @@ struct UnequalCells {
   double first_mean, untouched_mean, elastic_mean;
 };
 UnequalCells compress_unequal_cells(double first, double second) {
-  ModelSettings<2> s;
-  s.lower = Vec<2>::Zero();
-  s.upper = Vec<2>::Constant(2.0);
-  s.cell = 0.1;
-  s.fixed_dt = 1e-4;
+  ModelSettings<2> s = block_settings(true);
   s.cell_volumetric_strain = true;
-  s.crack_closure = true;
   Model<2> m(s);
-  MohrCoulombParameters mc;
-  mc.density = 1000, mc.young = 1e7, mc.poisson = 0.3, mc.cohesion = 5e3, mc.friction = 30, mc.tension = 0;
-  const int mat = m.add_material(std::make_shared<MohrCoulomb>(mc));
-  m.fill_box(m.add_body("soil", 2), mat, Vec<2>::Constant(0.8), Vec<2>::Constant(1.2));
+  const MohrCoulombParameters mc = tensionless_soil();
+  fill_block(m, mc);
   auto& P = m.particles();
   std::map<std::pair<int, int>, int> seen;  // particles met so far in each cell
   std::vector<int> role(P.size());          // 1 first, 2 second, 0 untouched
