@@ -17,11 +17,13 @@
 -- front.csv (the front against time), summary.txt.
 --
 -- --set height= and --set friction= build other columns (the aspect-ratio study, docs/validation.md); the
--- measured profile is compared only for the experiment's column.
+-- measured profile is compared only for the experiment's column. --set young= (Pa) changes the bars'
+-- stiffness alone (the stiffness study there), still drawn beside the measured profile.
 --
 --   seismpm scenarios/granular_collapse.lua [--set shape=linear|gimp] [--set cell=0.004] [--set ppc=2]
 --                                           [--set duration=3] [--set check=true] [--set transfer=apic|flip]
 --                                           [--set cell_volumetric_strain=false] [--set crack_closure=false]
+--                                           [--set young=0.84e6]
 --
 -- The velocity update is APIC (transfer = "apic"): with FLIP the particle velocities keep sub-grid noise
 -- (about 1 m/s on single particles, several times the deposit's own motion) which kept the deposit creeping
@@ -59,7 +61,8 @@ if not (height > 0) then error("--set height must be positive, got " .. height, 
 -- 0.51 and 0.81 m computed for a = 1 and 2 at phi = 30 deg), and the grid gives it 1.5 times that.
 local length = math.max(0.7, width * (1 + 5 * height / width), width + 1.5 * height / math.tan(math.rad(phi)))
 local top = math.max(0.35, 3.5 * height)
-local rho, young, poisson = 2650, 0.84e6, 0.3
+local rho, poisson = 2650, 0.3
+local young = mpm.param("young", 0.84e6)        -- Pa (experiment 0.84 MPa): the stiffness study, docs/validation.md
 local lift_speed = 1.0                          -- m/s
 local lift_time = 2 * height / lift_speed       -- s: the gate clears the column's top
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
