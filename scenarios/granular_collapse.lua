@@ -18,12 +18,13 @@
 --
 -- --set height= and --set friction= build other columns (the aspect-ratio study, docs/validation.md); the
 -- measured profile is compared only for the experiment's column. --set young= (Pa) changes the bars'
--- stiffness alone (the stiffness study there), still drawn beside the measured profile.
+-- stiffness alone, --set cfl= the time step's Courant number (the stiffness and time-step study there:
+-- APIC's dissipation grows with the number of steps), both still drawn beside the measured profile.
 --
 --   seismpm scenarios/granular_collapse.lua [--set shape=linear|gimp] [--set cell=0.004] [--set ppc=2]
 --                                           [--set duration=3] [--set check=true] [--set transfer=apic|flip]
 --                                           [--set cell_volumetric_strain=false] [--set crack_closure=false]
---                                           [--set young=0.84e6]
+--                                           [--set young=0.84e6] [--set cfl=0.4]
 --
 -- The velocity update is APIC (transfer = "apic"): with FLIP the particle velocities keep sub-grid noise
 -- (about 1 m/s on single particles, several times the deposit's own motion) which kept the deposit creeping
@@ -62,13 +63,14 @@ if not (height > 0) then error("--set height must be positive, got " .. height, 
 local length = math.max(0.7, width * (1 + 5 * height / width), width + 1.5 * height / math.tan(math.rad(phi)))
 local top = math.max(0.35, 3.5 * height)
 local rho, poisson = 2650, 0.3
-local young = mpm.param("young", 0.84e6)        -- Pa (experiment 0.84 MPa): the stiffness study, docs/validation.md
+local young = mpm.param("young", 0.84e6)        -- Pa (experiment 0.84 MPa)
+local cfl = mpm.param("cfl", 0.4)               -- Courant number of the time step (the kernel's default)
 local lift_speed = 1.0                          -- m/s
 local lift_time = 2 * height / lift_speed       -- s: the gate clears the column's top
 local here = debug.getinfo(1, "S").source:match("^@(.*[/\\])") or "./"
 
 local m = mpm.model{ domain = {{0, 0}, {length, top}}, cell = cell, shape = shape, transfer = transfer,
-                     cell_volumetric_strain = averaged, crack_closure = closure }
+                     cell_volumetric_strain = averaged, crack_closure = closure, cfl = cfl }
 local bars = mpm.material.mohr_coulomb{ density = rho, young = young, poisson = poisson, cohesion = 0,
                                         friction = phi, dilation = 0 }
 local column = m:body{ name = "column", material = bars, shape = mpm.shape.rectangle{ 0, 0, width, height },
