@@ -1,15 +1,60 @@
 #include "time_step.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
 
 namespace seismpm {
+
+namespace {
+
+// The fastest signal without Rayleigh damping (signal_speed's first part), in straight-line arithmetic
+// over raw arrays that the compiler vectorises over the particles: the divisions and square roots of
+// one particle after another, scalar, were most of this loop's time. Max is exact, so the result is
+// the same for any grouping of the particles.
+template <bool Flags, int Dim>
+double fastest_undamped_signal(const Particles<Dim>& P, const MaterialConstants& c, const char* may_close) {
+  const int n = static_cast<int>(P.size());
+  const double* const mass = P.mass.data();
+  const double* const volume = P.volume.data();
+  const double* const velocity = P.v[0].data();  // Dim contiguous components per particle
+  const std::uint16_t* const material = P.material.data();
+  const double* const rho0 = c.initial_density.data();
+  const double* const M = c.p_wave_modulus.data();
+  const double* const G = c.shear_modulus.data();
+  // Per material, 1 where an opened particle counts at its initial density (wave_speed): doubles,
+  // which the vectorised loop gathers (it cannot gather bytes).
+  std::vector<double> closes(c.tensionless.size());
+  for (std::size_t m = 0; m < closes.size(); ++m) closes[m] = c.crack_closure && c.tensionless[m] ? 1.0 : 0.0;
+  const double* const closing = closes.data();
+  double max_speed = 0.0;
+#pragma omp parallel for simd schedule(static) reduction(max : max_speed)
+  for (int p = 0; p < n; ++p) {
+    const int m = material[p];
+    const double rho = mass[p] / volume[p];
+    bool opened = (closing[m] != 0.0) & (rho * (1.0 + 1e-9) < rho0[m]);
+    if constexpr (Flags) opened &= may_close[p] != 0;
+    const double loaded = M[m] / rho, unloaded = std::max(M[m] / rho0[m], G[m] / rho);
+    double v2 = 0.0;
+    for (int d = 0; d < Dim; ++d) v2 += velocity[Dim * p + d] * velocity[Dim * p + d];
+    const double speed = std::sqrt(opened ? unloaded : loaded) + std::sqrt(v2);
+    max_speed = std::max(max_speed, speed);
+  }
+  return max_speed;
+}
+
+}  // namespace
 
 template <int Dim>
 double stable_time_step(const Particles<Dim>& particles, const MaterialConstants& c, double cfl, double cell,
                         const char* may_close) {
   const int n = static_cast<int>(particles.size());
   double max_speed = 0.0;
-  if (may_close) {
+  if (!c.any_rayleigh) {
+    max_speed = may_close ? fastest_undamped_signal<true>(particles, c, may_close)
+                          : fastest_undamped_signal<false>(particles, c, may_close);
+  } else if (may_close) {
 #pragma omp parallel for schedule(static) reduction(max : max_speed)
     for (int p = 0; p < n; ++p) max_speed = std::max(max_speed, signal_speed(particles, c, p, cell, may_close[p] != 0));
   } else {
