@@ -301,23 +301,24 @@ void Model<Dim>::begin_phase(bool rigid_bodies_move) {
 
 template <int Dim>
 void Model<Dim>::step(double dt_max) {
-  const StepContext c = next_step(dt_max);
+  if (particles_.size() == 0) throw InputError("model: no particles to step");
   const bool contact = contact_.prepare(bodies_);  // bodies or pairs may have changed
   const bool linear = settings_.shape == ShapeKind::Linear;
   if (linear)
-    contact ? step_with<LinearShape, true>(c) : step_with<LinearShape, false>(c);
+    contact ? step_with<LinearShape, true>(dt_max) : step_with<LinearShape, false>(dt_max);
   else
-    contact ? step_with<GimpShape, true>(c) : step_with<GimpShape, false>(c);
+    contact ? step_with<GimpShape, true>(dt_max) : step_with<GimpShape, false>(dt_max);
 }
 
 // One explicit MPM step in the order of the method. With contact fields (rigid bodies, contact
 // pairs) the nodes where fields meet carry a velocity per field; without, none of that is compiled in.
+// The particles are located before the time step is chosen (nothing moves them in between): the
+// time step's view of crack closure then reads the cell sums the stress update uses, instead of
+// placing every particle in its cell again and summing the cells in a serial pass of its own.
 template <int Dim>
 template <class Shape, bool Contact>
-void Model<Dim>::step_with(const StepContext& c) {
+void Model<Dim>::step_with(double dt_max) {
   timer_.start(settings_.profile);
-  for (auto& f : fixes_) f->before_step(*this, c);
-  if constexpr (Contact) prescribe_rigid_velocities(c);  // v_R(t) on the rigid particles
   // Unless a fix may write to other nodes, nothing writes to a node no particle reaches, so the grid
   // loops can skip those.
   const bool limited =
@@ -326,7 +327,12 @@ void Model<Dim>::step_with(const StepContext& c) {
   active_valid_ = false;  // until the step completes: a step that throws leaves the grid unknown
   timer_.lap(Stage::Reset);
   locate_particles<Shape>(limited);
+  if (settings_.cell_volumetric_strain) sum_cell_volumes<Contact>();
   timer_.lap(Stage::Stencils);
+  const StepContext c = next_step(dt_max, settings_.fixed_dt > 0.0 ? nullptr : closable_in_step());
+  timer_.lap(Stage::TimeStep);
+  for (auto& f : fixes_) f->before_step(*this, c);
+  if constexpr (Contact) prescribe_rigid_velocities(c);  // v_R(t) on the rigid particles
   if constexpr (Contact) {
     contact_.template mark_shared_nodes<Shape>(particles_, grid_, support_, c);
     timer_.lap(Stage::ContactFields);
@@ -354,9 +360,12 @@ void Model<Dim>::step_with(const StepContext& c) {
 
 // The step's length and clock, from the CFL condition (or the fixed step) and the caller's limit.
 template <int Dim>
-StepContext Model<Dim>::next_step(double dt_max) {
-  if (particles_.size() == 0) throw InputError("model: no particles to step");
-  const double dt = time_step_.next(settings_.fixed_dt > 0.0 ? settings_.fixed_dt : stable_time_step(), dt_max);
+StepContext Model<Dim>::next_step(double dt_max, const char* may_close) {
+  const double dt =
+      time_step_.next(settings_.fixed_dt > 0.0
+                          ? settings_.fixed_dt
+                          : seismpm::stable_time_step(particles_, constants_, settings_.cfl, grid_.cell(), may_close),
+                      dt_max);
   if (time_step_.collapsed(dt, dt_max)) {
     const auto [fastest, speed] = fastest_signal(particles_, constants_, grid_.cell(), closable_particles());
     std::ostringstream os;

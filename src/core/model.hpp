@@ -192,9 +192,10 @@ class Model {
   Model(const Model&) = default;  // through copy_without_fixes only
 
   // The step, stage by stage (model.cpp, transfer.cpp, stress_update.cpp).
-  StepContext next_step(double dt_max);
+  // `may_close`: per particle, whether crack closure may leave it stress-free (closable_particles).
+  StepContext next_step(double dt_max, const char* may_close);
   template <class Shape, bool Contact>
-  void step_with(const StepContext& c);
+  void step_with(double dt_max);
   void prescribe_rigid_velocities(const StepContext& c);
   void reset_grid(bool limited);
   template <class Shape>
@@ -216,7 +217,10 @@ class Model {
   template <class Shape, bool Contact>
   void velocity_gradients(const StepContext& c);
   template <bool Contact>
+  void sum_cell_volumes();
+  template <bool Contact>
   void sum_cell_dilation();
+  const char* closable_in_step();
   template <bool Contact>
   void rotate_close_and_update_volume(bool average);
   void integrate_materials();
@@ -251,14 +255,15 @@ class Model {
     return constants_.tensionless[m] ? particles_.mass[p] / constants_.initial_density[m] : particles_.volume[p];
   }
   // With the cell-averaged volumetric strain: a compressed tensionless particle closes where its cell
-  // is open (its volume above its stress-free volume; cell sums from sum_cell_dilation).
+  // is open (its volume above its stress-free volume; cell sums from sum_cell_volumes).
   bool closes_by_cell(std::size_t p, int cell) const {
     return settings_.crack_closure && constants_.tensionless[particles_.material[p]] &&
-           exceeds_free_volume(cell_volume_[cell], cell_free_volume_[cell]);
+           exceeds_free_volume(cell_sums_[cell].volume, cell_sums_[cell].free_volume);
   }
   // Per particle, 1 where crack closure may leave it stress-free (looser than its initial density, in
   // an open cell), for the time step; nullptr where closure is judged particle by particle or no
-  // particle is looser (stress_update.cpp).
+  // particle is looser (stress_update.cpp). From the particles' positions, for a time step asked for
+  // outside the step; the step itself takes the same flags from its own cell sums (closable_in_step).
   const char* closable_particles() const;
 
   ModelSettings<Dim> settings_;
@@ -285,7 +290,12 @@ class Model {
   bool active_valid_ = false;
   std::vector<Sym> strain_increment_;
   std::vector<Eigen::Vector3d> spin_;  // dt skw(L) as (w_xy, w_yz, w_xz)
-  std::vector<double> cell_volume_, cell_dilation_, cell_free_volume_;
+  // Per cell, the sums the cell-averaged volumetric strain and crack closure read (one record: a
+  // particle reads and writes them together); valid only in the cells the step's particles are in.
+  struct CellSums {
+    double volume, free_volume, dilation;
+  };
+  std::vector<CellSums> cell_sums_;
   // closable_particles' scratch (the time step runs on a const model).
   mutable std::vector<double> open_volume_, open_free_volume_;
   mutable std::vector<int> open_cell_of_;

@@ -53,14 +53,20 @@ class ScatterSchedule {
     }
   }
 
-  // Calls f(slab, p) for every particle, slabs in parallel, each slab's particles in order. For work
-  // that touches only the particle's own cell: slabs hold disjoint cells, so no colouring is needed.
-  template <class F>
-  void for_each_in_own_cell_by_slab(F&& f) const {
+  // Calls g(s, first, last) for every slab s with its particles [first, last) in order, slabs in
+  // parallel. For work that touches only the particles' own cells (slabs hold disjoint cells, so no
+  // colouring is needed), also in several passes over a slab: clear its cells, then sum into them.
+  template <class G>
+  void for_each_slab_of_own_cells(G&& g) const {
     const int slabs = static_cast<int>(begin_.size()) - 1;
 #pragma omp parallel
-    for_my_slabs(0, 1, slabs, [&](int s) {
-      for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(s, order_[k]);
+    for_my_slabs(0, 1, slabs, [&](int s) { g(s, order_.data() + begin_[s], order_.data() + begin_[s + 1]); });
+  }
+  // Calls f(slab, p) for every particle, slabs in parallel, each slab's particles in order.
+  template <class F>
+  void for_each_in_own_cell_by_slab(F&& f) const {
+    for_each_slab_of_own_cells([&](int s, const int* first, const int* last) {
+      for (const int* k = first; k != last; ++k) f(s, *k);
     });
   }
   // The same without the slab.

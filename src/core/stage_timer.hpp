@@ -12,6 +12,7 @@ namespace seismpm {
 enum class Stage {
   Reset,
   Stencils,
+  TimeStep,
   ContactFields,
   ParticlesToGrid,
   Nodes,
@@ -24,8 +25,8 @@ enum class Stage {
 
 inline const char* stage_name(Stage s) {
   static constexpr const char* kNames[] = {
-      "reset",       "stencils", "contact fields",    "particles to grid", "nodes", "grid to particles",
-      "MUSL re-map", "stress",   "checks and sorting"};
+      "reset", "stencils",          "time step",   "contact fields", "particles to grid",
+      "nodes", "grid to particles", "MUSL re-map", "stress",         "checks and sorting"};
   return kNames[static_cast<int>(s)];
 }
 

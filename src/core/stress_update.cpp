@@ -71,21 +71,40 @@ void Model<Dim>::velocity_gradients(const StepContext& c) {
 // deviatoric part stays, and so does de_zz = 0 in plane strain. Removes the volumetric locking that
 // isochoric plastic flow and near-incompressibility cause in low-order cells. Here the cells' sums;
 // rotate_close_and_update_volume applies the mean on its pass over the particles.
+//
+// The volumes are summed as soon as the particles are located (the time step reads them too, and no
+// volume changes before the stress update): each cell's volume and its particles' stress-free volume,
+// slab by slab (slabs hold disjoint cells), the slab's cells cleared first, so only occupied cells are
+// touched, and each cell summed in particle order, the same for any number of threads.
+template <int Dim>
+template <bool Contact>
+void Model<Dim>::sum_cell_volumes() {
+  cell_sums_.resize(grid_.cell_count());
+  const auto& P = particles_;
+  const auto& cell_of = support_.cell_of;
+  support_.schedule.for_each_slab_of_own_cells([&](int, const int* first, const int* last) {
+    for (const int* k = first; k != last; ++k) cell_sums_[cell_of[*k]] = CellSums{0.0, 0.0, 0.0};
+    for (const int* k = first; k != last; ++k) {
+      const int p = *k;
+      if constexpr (Contact)
+        if (contact_.any_rigid() && contact_.rigid(P.body[p])) continue;  // no strain of their own
+      CellSums& cell = cell_sums_[cell_of[p]];
+      cell.volume += P.volume[p];
+      cell.free_volume += free_volume(p);
+    }
+  });
+}
+
+// Then, in the stress update, the volume-weighted volumetric increments.
 template <int Dim>
 template <bool Contact>
 void Model<Dim>::sum_cell_dilation() {
-  const int cells = grid_.cell_count();
-  cell_volume_.assign(cells, 0.0);
-  cell_dilation_.assign(cells, 0.0);
-  cell_free_volume_.assign(cells, 0.0);
   const auto& P = particles_;
   const auto& cell_of = support_.cell_of;
   support_.schedule.for_each_in_own_cell([&](int p) {
     if constexpr (Contact)
-      if (contact_.any_rigid() && contact_.rigid(P.body[p])) return;  // no strain of their own
-    cell_volume_[cell_of[p]] += P.volume[p];
-    cell_dilation_[cell_of[p]] += P.volume[p] * trace(strain_increment_[p]);
-    cell_free_volume_[cell_of[p]] += free_volume(p);
+      if (contact_.any_rigid() && contact_.rigid(P.body[p])) return;
+    cell_sums_[cell_of[p]].dilation += P.volume[p] * trace(strain_increment_[p]);
   });
 }
 
@@ -105,8 +124,8 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
       if (contact_.rigid(P.body[p])) continue;
     Sym& de = strain_increment_[p];
     if (average) {
-      const int c = cell_of[p];
-      const double correction = (cell_dilation_[c] / cell_volume_[c] - trace(de)) / Dim;
+      const CellSums& cell = cell_sums_[cell_of[p]];
+      const double correction = (cell.dilation / cell.volume - trace(de)) / Dim;
       for (int d = 0; d < Dim; ++d) de[d] += correction;
     }
     Mat3 w = Mat3::Zero();
@@ -126,7 +145,7 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
     // cell of unequal neighbours opened some while others carried the load, and stress-free particles
     // in a resting deposit's surface kept it creeping (docs/kernel.md).
     if (-trace(de) > 0.0 && (average ? closes_by_cell(p, cell_of[p]) : opened(p))) {
-      const double opening = average ? std::log(cell_volume_[cell_of[p]] / cell_free_volume_[cell_of[p]])
+      const double opening = average ? std::log(cell_sums_[cell_of[p]].volume / cell_sums_[cell_of[p]].free_volume)
                                      : std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
       const double closing = std::min(-trace(de), opening);
       for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
@@ -181,6 +200,28 @@ const char* Model<Dim>::closable_particles() const {
       may_close_[p] = exceeds_free_volume(open_volume_[c], open_free_volume_[c]);
     }
   return may_close_.data();
+}
+
+// closable_particles within the step, from the located particles' cells and sum_cell_volumes' sums:
+// the same cells (each particle's position in the same cell index) and the same sums (each cell's in
+// particle order), so the same flags.
+template <int Dim>
+const char* Model<Dim>::closable_in_step() {
+  if (!(settings_.cell_volumetric_strain && settings_.crack_closure && constants_.any_tensionless)) return nullptr;
+  const int n = static_cast<int>(particles_.size());
+  const auto& P = particles_;
+  const auto& cell_of = support_.cell_of;
+  const bool any_rigid = contact_.any_rigid();
+  may_close_.resize(n);
+  int looser = 0;
+#pragma omp parallel for schedule(static) reduction(+ : looser)
+  for (int p = 0; p < n; ++p) {
+    const bool loose = opened(p) && !(any_rigid && contact_.rigid(P.body[p]));
+    const CellSums& cell = cell_sums_[cell_of[p]];
+    may_close_[p] = loose && exceeds_free_volume(cell.volume, cell.free_volume);
+    looser += loose;
+  }
+  return looser == 0 ? nullptr : may_close_.data();
 }
 
 // Each material updates its own particles' stresses in one call: no virtual call per particle.
@@ -241,6 +282,7 @@ void Model<Dim>::rebuild_material_lists() {
   template void Model<D>::update_stress<S, C>(const StepContext&); \
   template void Model<D>::velocity_gradients<S, C>(const StepContext&);
 #define SEISMPM_STRESS_CELLS(D, C)                \
+  template void Model<D>::sum_cell_volumes<C>();  \
   template void Model<D>::sum_cell_dilation<C>(); \
   template void Model<D>::rotate_close_and_update_volume<C>(bool);
 SEISMPM_FOR_EACH_STEP_VARIANT(SEISMPM_STRESS, SEISMPM_STRESS_CELLS)
@@ -254,5 +296,7 @@ template void Model<2>::rebuild_material_lists();
 template void Model<3>::rebuild_material_lists();
 template const char* Model<2>::closable_particles() const;
 template const char* Model<3>::closable_particles() const;
+template const char* Model<2>::closable_in_step();
+template const char* Model<3>::closable_in_step();
 
 }  // namespace seismpm
