@@ -159,12 +159,22 @@ mpm.plot{ file = out .. "/deposit.csv", x = "x (m)", y = {"computed surface (m)"
           reference = #measured > 0 and {"measured surface (m)"} or nil, title = "Deposit of the collapsed column",
           xlabel = "x (m)", ylabel = "surface height (m)" }
 
+-- Aluminium rods in true 2D, the bars' kind of material (arXiv 1512.05180): power laws above a = 0.65;
+-- below it the column keeps its height and no run-out law is given.
+local function rods_law(a)
+  if a <= 0.65 then return "aluminium rods in true 2D (arXiv 1512.05180): no run-out law below a = 0.65" end
+  local law, value = "3.25 a^0.96", 3.25 * a ^ 0.96
+  if a > 1.5 then law, value = "3.80 a^0.73", 3.80 * a ^ 0.73 end
+  return string.format("aluminium rods in true 2D (arXiv 1512.05180): %s = %.3f", law, value)
+end
+
 local lines = {
   string.format("granular collapse (%s, %s, %g mm cells, %dx%d particles per cell): %d steps, t = %.3f s",
                 shape, transfer, 1000 * cell, ppc, ppc, m:steps(), m:phase_time()),
   string.format("run-out (99.5th percentile of x): %.4f m (experiment 0.44-0.46 m)", front),
   string.format("aspect ratio a = %.3g, friction %.3g deg: normalised run-out (L - L0) / L0 = %.3f (Lube et al. 2005, "
                 .. "sand and glass beads: 1.2 a = %.3f)", height / width, phi, (front - width) / width, 1.2 * height / width),
+  rods_law(height / width),
   string.format("surface above x = 0.10 m: %.4f m (experiment 0.078), above x = 0.20 m: %.4f m (experiment 0.049)",
                 surface(0.10), surface(0.20)),
   #measured > 0 and string.format("largest surface difference for x <= 0.30 m: %.1f mm", 1000 * worst)
