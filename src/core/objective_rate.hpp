@@ -9,7 +9,7 @@
 namespace seismpm {
 
 // w: spin increment dt * skw(L) as a 3x3 skew matrix.
-inline Sym rotate_objectively(const Sym& stress, const Mat3& w) {
+[[gnu::always_inline]] inline Sym rotate_objectively(const Sym& stress, const Mat3& w) {
   // Cayley transform of A = W/2 with axial vector a: Q = I + 2 / (1 + a.a) (A + A^2).
   const double axy = 0.5 * w(0, 1), ayz = 0.5 * w(1, 2), axz = 0.5 * w(0, 2);
   if (ayz == 0.0 && axz == 0.0) {
