@@ -220,7 +220,7 @@ class Model {
   void sum_cell_volumes();
   template <bool Contact>
   void sum_cell_dilation();
-  const char* closable_in_step();
+  const char* closable_in_step() const;
   template <bool Contact>
   void rotate_close_and_update_volume(bool average);
   void integrate_materials();
@@ -265,6 +265,17 @@ class Model {
   // particle is looser (stress_update.cpp). From the particles' positions, for a time step asked for
   // outside the step; the step itself takes the same flags from its own cell sums (closable_in_step).
   const char* closable_particles() const;
+  // Crack closure judged by the cell (the cell-averaged volumetric strain), for some material.
+  bool closure_by_cell() const {
+    return settings_.cell_volumetric_strain && settings_.crack_closure && constants_.any_tensionless;
+  }
+  // Per cell, the sums the cell-averaged volumetric strain and crack closure read (one record: a
+  // particle reads and writes them together).
+  struct CellSums {
+    double volume, free_volume, dilation;
+  };
+  template <class CellOf>
+  const char* closable_flags(CellOf&& cell_of, const std::vector<CellSums>& sums) const;
 
   ModelSettings<Dim> settings_;
   Grid<Dim> grid_;
@@ -289,19 +300,9 @@ class Model {
   ActiveNodes<Dim> active_;
   bool active_valid_ = false;
   std::vector<Sym> strain_increment_;
-  std::vector<Eigen::Vector3d> spin_;  // dt skw(L) as (w_xy, w_yz, w_xz)
-  // Per cell, the sums the cell-averaged volumetric strain and crack closure read (one record: a
-  // particle reads and writes them together); valid only in the cells the step's particles are in.
-  struct CellSums {
-    double volume, free_volume, dilation;
-  };
-  std::vector<CellSums> cell_sums_;
-  // closable_particles' scratch (the time step runs on a const model).
-  mutable std::vector<double> open_volume_, open_free_volume_;
-  mutable std::vector<int> open_cell_of_;
-  mutable std::vector<unsigned> open_stamp_of_;  // the pass that last cleared each cell
-  mutable unsigned open_stamp_ = 0;
-  mutable std::vector<char> may_close_;
+  std::vector<Eigen::Vector3d> spin_;    // dt skw(L) as (w_xy, w_yz, w_xz)
+  std::vector<CellSums> cell_sums_;      // valid only in the cells the step's particles are in
+  mutable std::vector<char> may_close_;  // closable_flags' result (the time step runs on a const model)
   std::vector<std::vector<int>> material_particles_;
   bool material_lists_valid_ = false;
   mutable std::vector<int> index_of_id_;  // rebuilt on demand after a sort

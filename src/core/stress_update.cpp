@@ -156,68 +156,48 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
   }
 }
 
-// The time step's view of crack closure by cell: each particle's cell from its position (the cell the
-// stress update will average over), the occupied cells' volumes summed in one serial pass in particle
-// order (the same for any number of threads and after a restart; a cell is cleared when the pass first
-// meets it this step, by a stamp, not by a sweep of the grid), and per particle looser than its initial
-// density whether its cell is open. nullptr where no particle is looser: every particle then counts at
-// its current density anyway.
+// The time step's view of crack closure by cell, asked for outside the step (before the first one, or
+// naming the particle that set a collapsed step): each particle's cell from its position (the cell the
+// stress update will average over) and the cells' volumes summed in particle order, as the step's
+// sum_cell_volumes sums them, so the flags are the step's own. Rare: a plain serial pass.
 template <int Dim>
 const char* Model<Dim>::closable_particles() const {
-  if (!(settings_.cell_volumetric_strain && settings_.crack_closure && constants_.any_tensionless)) return nullptr;
-  const int n = static_cast<int>(particles_.size());
+  if (!closure_by_cell()) return nullptr;
   const CellIndex<Dim> cells(grid_);
   const auto& P = particles_;
   const bool any_rigid = contact_.any_rigid();
-  open_cell_of_.resize(n);
-  may_close_.resize(n);
-  int looser = 0;
-#pragma omp parallel for schedule(static) reduction(+ : looser)
-  for (int p = 0; p < n; ++p) {
-    open_cell_of_[p] = cells.of(P.x[p]);
-    const bool loose = opened(p) && !(any_rigid && contact_.rigid(P.body[p]));
-    may_close_[p] = loose;  // for now: looser than its initial density
-    looser += loose;
-  }
-  if (looser == 0) return nullptr;
-  if (static_cast<int>(open_stamp_of_.size()) != grid_.cell_count() || ++open_stamp_ == 0) {
-    open_volume_.assign(grid_.cell_count(), 0.0);
-    open_free_volume_.assign(grid_.cell_count(), 0.0);
-    open_stamp_of_.assign(grid_.cell_count(), 0u);
-    open_stamp_ = 1;
-  }
-  for (int p = 0; p < n; ++p) {
+  std::vector<CellSums> sums(grid_.cell_count(), CellSums{0.0, 0.0, 0.0});
+  for (std::size_t p = 0; p < P.size(); ++p) {
     if (any_rigid && contact_.rigid(P.body[p])) continue;
-    const int c = open_cell_of_[p];
-    if (open_stamp_of_[c] != open_stamp_) open_stamp_of_[c] = open_stamp_, open_volume_[c] = open_free_volume_[c] = 0.0;
-    open_volume_[c] += P.volume[p];
-    open_free_volume_[c] += free_volume(p);
+    CellSums& cell = sums[cells.of(P.x[p])];
+    cell.volume += P.volume[p];
+    cell.free_volume += free_volume(p);
   }
-#pragma omp parallel for schedule(static)
-  for (int p = 0; p < n; ++p)
-    if (may_close_[p]) {
-      const int c = open_cell_of_[p];
-      may_close_[p] = exceeds_free_volume(open_volume_[c], open_free_volume_[c]);
-    }
-  return may_close_.data();
+  return closable_flags([&](int p) { return cells.of(P.x[p]); }, sums);
 }
 
-// closable_particles within the step, from the located particles' cells and sum_cell_volumes' sums:
-// the same cells (each particle's position in the same cell index) and the same sums (each cell's in
-// particle order), so the same flags.
+// The same within the step, from the located particles' cells and sum_cell_volumes' sums.
 template <int Dim>
-const char* Model<Dim>::closable_in_step() {
-  if (!(settings_.cell_volumetric_strain && settings_.crack_closure && constants_.any_tensionless)) return nullptr;
-  const int n = static_cast<int>(particles_.size());
-  const auto& P = particles_;
+const char* Model<Dim>::closable_in_step() const {
+  if (!closure_by_cell()) return nullptr;
   const auto& cell_of = support_.cell_of;
+  return closable_flags([&](int p) { return cell_of[p]; }, cell_sums_);
+}
+
+// Per particle, 1 where it is looser than its initial density and its cell (cell_of(p), summed in
+// `sums`) is open; nullptr where no particle is looser: every particle then counts at its current
+// density anyway.
+template <int Dim>
+template <class CellOf>
+const char* Model<Dim>::closable_flags(CellOf&& cell_of, const std::vector<CellSums>& sums) const {
+  const int n = static_cast<int>(particles_.size());
   const bool any_rigid = contact_.any_rigid();
   may_close_.resize(n);
   int looser = 0;
 #pragma omp parallel for schedule(static) reduction(+ : looser)
   for (int p = 0; p < n; ++p) {
-    const bool loose = opened(p) && !(any_rigid && contact_.rigid(P.body[p]));
-    const CellSums& cell = cell_sums_[cell_of[p]];
+    const bool loose = opened(p) && !(any_rigid && contact_.rigid(particles_.body[p]));
+    const CellSums& cell = sums[cell_of(p)];
     may_close_[p] = loose && exceeds_free_volume(cell.volume, cell.free_volume);
     looser += loose;
   }
@@ -296,7 +276,7 @@ template void Model<2>::rebuild_material_lists();
 template void Model<3>::rebuild_material_lists();
 template const char* Model<2>::closable_particles() const;
 template const char* Model<3>::closable_particles() const;
-template const char* Model<2>::closable_in_step();
-template const char* Model<3>::closable_in_step();
+template const char* Model<2>::closable_in_step() const;
+template const char* Model<3>::closable_in_step() const;
 
 }  // namespace seismpm

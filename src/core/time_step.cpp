@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <vector>
 
 namespace seismpm {
 
@@ -23,17 +22,14 @@ double fastest_undamped_signal(const Particles<Dim>& P, const MaterialConstants&
   const double* const rho0 = c.initial_density.data();
   const double* const M = c.p_wave_modulus.data();
   const double* const G = c.shear_modulus.data();
-  // Per material, 1 where an opened particle counts at its initial density (wave_speed): doubles,
-  // which the vectorised loop gathers (it cannot gather bytes).
-  std::vector<double> closes(c.tensionless.size());
-  for (std::size_t m = 0; m < closes.size(); ++m) closes[m] = c.crack_closure && c.tensionless[m] ? 1.0 : 0.0;
-  const double* const closing = closes.data();
+  const double* const tensionless = c.tensionless.data();
+  const bool closure = c.crack_closure;
   double max_speed = 0.0;
 #pragma omp parallel for simd schedule(static) reduction(max : max_speed)
   for (int p = 0; p < n; ++p) {
     const int m = material[p];
     const double rho = mass[p] / volume[p];
-    bool opened = (closing[m] != 0.0) & (rho * (1.0 + 1e-9) < rho0[m]);
+    bool opened = closure & (tensionless[m] != 0.0) & looser_than_initial(rho, rho0[m]);  // as wave_speed
     if constexpr (Flags) opened &= may_close[p] != 0;
     const double loaded = M[m] / rho, unloaded = std::max(M[m] / rho0[m], G[m] / rho);
     double v2 = 0.0;

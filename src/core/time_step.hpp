@@ -15,7 +15,7 @@ namespace seismpm {
 // Per material, the constants the step reads without a virtual call.
 struct MaterialConstants {
   std::vector<double> p_wave_modulus, initial_density, bulk_modulus, shear_modulus;
-  std::vector<char> tensionless;
+  std::vector<double> tensionless;                    // 1 or 0: doubles, which the vectorised time step can gather
   std::vector<double> rayleigh_alpha, rayleigh_beta;  // 1/s, s
   bool any_rayleigh = false;                          // some material is Rayleigh-damped
   bool any_tensionless = false;                       // some material has no tensile strength
@@ -25,7 +25,7 @@ struct MaterialConstants {
     initial_density.push_back(m.density());
     bulk_modulus.push_back(m.bulk_modulus());
     shear_modulus.push_back(m.shear_modulus());
-    tensionless.push_back(m.tensionless());
+    tensionless.push_back(m.tensionless() ? 1.0 : 0.0);
     rayleigh_alpha.push_back(m.rayleigh().alpha);
     rayleigh_beta.push_back(m.rayleigh().beta);
     any_rayleigh = any_rayleigh || m.rayleigh().any();
@@ -44,12 +44,15 @@ struct MaterialConstants {
 // `may_close`: false where the particle's cell is not open (closure judged by the cell, with the
 // cell-averaged volumetric strain): a particle looser than its own initial density there is loaded
 // by compression like any other, at sqrt(M / rho).
+// Looser than the initial density by more than round-off (density rho against rho0).
+inline bool looser_than_initial(double rho, double rho0) { return rho * (1.0 + 1e-9) < rho0; }
+
 template <int Dim>
 [[gnu::always_inline]] inline double wave_speed(const Particles<Dim>& P, const MaterialConstants& c, std::size_t p,
                                                 bool may_close = true) {
   const int m = P.material[p];
   const double rho = P.density(p), rho0 = c.initial_density[m], M = c.p_wave_modulus[m];
-  const bool opened = may_close & c.crack_closure & (c.tensionless[m] != 0) & (rho * (1.0 + 1e-9) < rho0);
+  const bool opened = may_close & c.crack_closure & (c.tensionless[m] != 0.0) & looser_than_initial(rho, rho0);
   return std::sqrt(opened ? std::max(M / rho0, c.shear_modulus[m] / rho) : M / rho);
 }
 
