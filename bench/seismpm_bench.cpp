@@ -1,12 +1,16 @@
 // Step-loop benchmark: particle-steps per second (particles x steps / wall seconds) for a 2D
 // elastic block settling under gravity on a fixed base, MUSL, FLIP.
-//   seismpm_bench [--steps N] [--repeat R] [--threads "1 2"] [--sizes "25000 100000"]
-// Each case runs R times (after warm-up steps); the median is printed, one line per case.
+//   seismpm_bench [--steps N] [--repeat R] [--threads "1 2"] [--sizes "25000 100000"] [--digest]
+// Each case runs R times (after warm-up steps); the median is printed, one line per case. --digest
+// adds a hash of the first run's final particle state (positions, velocities, stresses, by creation
+// index), so that two binaries' results can be compared bit for bit.
 #include <omp.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -75,7 +79,7 @@ std::unique_ptr<Model<2>> sand_column(bool profile) {
 
 struct Options {
   int steps = 100, repeat = 5;
-  bool profile = false;
+  bool profile = false, digest = false;
   std::vector<int> threads = {1, 2}, sizes = {25000, 100000};
   std::vector<std::string> cases = {"linear", "gimp", "mc-sand", "contact", "glued", "no-base", "shaking-table"};
   std::string baseline, save;
@@ -95,6 +99,28 @@ void record(const std::string& name, std::size_t particles, int threads, double 
   figures.push_back({name, particles, threads, rate});
 }
 
+// FNV-1a over the bits of the particles' positions, velocities and stresses in creation order: equal
+// digests mean (all but surely) bit-identical states.
+std::uint64_t state_digest(const Model<2>& m) {
+  const Particles<2>& p = m.particles();
+  std::vector<int> by_id(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) by_id[p.id[i]] = static_cast<int>(i);
+  std::uint64_t h = 1469598103934665603ull;
+  auto mix = [&](const double* v, int n) {
+    for (int k = 0; k < n; ++k) {
+      const auto bits = std::bit_cast<std::uint64_t>(v[k]);
+      for (int b = 0; b < 8; ++b) h = (h ^ ((bits >> (8 * b)) & 0xff)) * 1099511628211ull;
+    }
+  };
+  for (int i : by_id) {
+    mix(p.x[i].data(), 2);
+    mix(p.v[i].data(), 2);
+    mix(p.stress[i].data(), static_cast<int>(p.stress[i].size()));
+  }
+  return h;
+}
+std::string last_digest;  // of the latest median_rate's first run, with --digest
+
 // Median particle-steps per second over `repeat` models from `make`, each timed over `steps` steps
 // after 5 warm-up steps (first touches, first sort); `after(model, r)` looks at each one.
 template <class Make, class After>
@@ -109,6 +135,11 @@ double median_rate(const Options& o, Make&& make, After&& after, int warm_up = 5
     for (int k = 0; k < o.steps; ++k) m.step();  // throws on a NaN
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rates.push_back(particles * o.steps / wall);
+    if (o.digest && r == 0) {
+      char text[32];
+      std::snprintf(text, sizeof text, "  digest %016llx", static_cast<unsigned long long>(state_digest(m)));
+      last_digest = text;
+    }
     after(m, r);
   }
   std::sort(rates.begin(), rates.end());
@@ -133,8 +164,9 @@ void print_stages(const Options& o, const Model<2>& m, int warm_up = 5) {
 }
 
 void print_line(const std::string& name, std::size_t particles, int threads, double rate, const std::string& extra) {
-  std::printf("%-14s %-10zu %8d %10.3f %14.3fM   %s\n", name.c_str(), particles, threads, 1e3 * particles / rate,
-              rate / 1e6, extra.c_str());
+  std::printf("%-14s %-10zu %8d %10.3f %14.3fM   %s%s\n", name.c_str(), particles, threads, 1e3 * particles / rate,
+              rate / 1e6, extra.c_str(), last_digest.c_str());
+  last_digest.clear();
   std::fflush(stdout);
   record(name, particles, threads, rate);
 }
@@ -307,6 +339,8 @@ bool parse_options(int argc, char** argv, Options& o) {
       o.repeat = std::max(1, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--threads") && has_value) {
       o.threads = parse_list(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--digest")) {
+      o.digest = true;
     } else if (!std::strcmp(argv[i], "--profile")) {
       o.profile = true;
     } else if (!std::strcmp(argv[i], "--sizes") && has_value) {

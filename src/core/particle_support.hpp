@@ -30,8 +30,9 @@ class ParticleSupport {
     int outside = n;
 #pragma omp parallel for schedule(static) reduction(min : outside)
     for (int p = 0; p < n; ++p) {
-      if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p]))
-        cell_of[p] = cells.of(particles.x[p]);
+      std::array<int, Dim> cell;
+      if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], cell.data()))
+        cell_of[p] = cells.of_coords(cell);
       else
         outside = std::min(outside, p);
     }

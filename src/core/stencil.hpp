@@ -2,6 +2,7 @@
 // per step at the start-of-step positions and used by every transfer of the step.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "grid.hpp"
@@ -41,14 +42,17 @@ bool inside_domain(const Grid<Dim>& grid, const Vec<Dim>& x) {
 // Returns false when the particle's centre is outside the grid. A model's grid has a ghost layer,
 // so a particle in its domain always has its whole support; on a grid without one, a uGIMP stencil
 // reaching past the edge is clipped there (which breaks sum grad N = 0 for that particle).
+// With `cell` (Dim ints), also the coordinates of the cell holding x, clamped to the grid (CellIndex::coords_of's,
+// from the same scaled coordinate).
 template <class Shape, int Dim>
-bool make_stencil(const Grid<Dim>& grid, const Vec<Dim>& x, double l, Stencil<Dim, Shape::K>& st) {
+bool make_stencil(const Grid<Dim>& grid, const Vec<Dim>& x, double l, Stencil<Dim, Shape::K>& st, int* cell = nullptr) {
   const double inv_h = 1.0 / grid.cell();
   st.base = 0;
   for (int d = 0; d < Dim; ++d) {
     const double xi = (x[d] - grid.origin()[d]) * inv_h;
     const int cells = grid.cells(d);
     if (!(xi >= 0.0 && xi <= cells)) return false;
+    if (cell) cell[d] = std::min(static_cast<int>(std::floor(xi)), cells - 1);  // xi >= 0 here
     int first = Shape::first_node(xi, l);
     if (first < 0) first = 0;
     if (first > cells + 1 - Shape::K) first = cells + 1 - Shape::K;

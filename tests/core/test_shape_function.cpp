@@ -72,14 +72,21 @@ TEST_CASE("uGIMP matches its closed form piece by piece", "[core][shape]") {
     const double fd = (GimpShape::value(r + 1e-7, l) - GimpShape::value(r - 1e-7, l)) / 2e-7;
     CHECK(GimpShape::derivative(r, l) == Approx(fd).margin(1e-6));
   }
-  // The fused evaluation the kernel uses gives the same numbers.
-  for (double xi = 2.0; xi < 3.0; xi += 0.0371) {
-    double w[3], dw[3];
-    const int first = GimpShape::first_node(xi, l);
-    GimpShape::eval(xi, l, first, w, dw);
-    for (int k = 0; k < 3; ++k) {
-      CHECK(w[k] == GimpShape::value(xi - (first + k), l));
-      CHECK(dw[k] == GimpShape::derivative(xi - (first + k), l));
+  // The branch-free evaluation the kernel uses gives the piecewise numbers to round-off, at every
+  // position in a cell (linear, tail and centre pieces, and the edges between them), for 1-3
+  // particles per cell.
+  for (const double half : {1.0 / 6.0, 0.25, 0.5}) {
+    for (double xi = 2.0; xi < 3.0; xi += 0.0371) {
+      for (const double at : {xi, 2.0 + half, 3.0 - half, 3.0, 3.0 + half - 1e-12}) {
+        CAPTURE(half, at);
+        double w[3], dw[3];
+        const int first = GimpShape::first_node(at, half);
+        GimpShape::eval(at, half, first, w, dw);
+        for (int k = 0; k < 3; ++k) {
+          CHECK(w[k] == Approx(GimpShape::value(at - (first + k), half)).margin(1e-15));
+          CHECK(dw[k] == Approx(GimpShape::derivative(at - (first + k), half)).margin(1e-14));
+        }
+      }
     }
   }
 }
