@@ -13,12 +13,34 @@ LinearElastic::LinearElastic(double density, double young, double poisson)
   validate_elastic(density, elastic_);
 }
 
+namespace {
+
+// The product as it is, never fused with the sum it feeds into a multiply-add: elastic_trial adds
+// lambda tr(de) to its three normal entries by a vector addition, unfused, and the update below must
+// give its numbers to the bit.
+inline double unfused(double product) {
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
+  return __builtin_assoc_barrier(product);
+#else
+  return product;
+#endif
+}
+
+}  // namespace
+
+// elastic_trial written into the stress entry by entry: built whole and copied, its normal entries
+// came from a wide store and a narrow one over part of it, and the wide load that read them back
+// waited for both (the moving-base block's stress stage, 40,450 particles: 1.50 -> 1.36 ms a step).
 void LinearElastic::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < b.count; ++k) {
     const int p = b.index[k];
-    b.stress[p] = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+    Sym& s = b.stress[p];
+    const Sym& de = b.strain_increment[p];
+    const double lt = unfused(lambda * trace(de));
+    for (int i = 0; i < 3; ++i) s[i] = (s[i] + two_g * de[i]) + lt;
+    for (int i = 3; i < 6; ++i) s[i] = s[i] + two_g * de[i];
     b.yield[p] = 0;
   }
 }
