@@ -8,6 +8,7 @@
 
 #include "contact/rigid_body.hpp"
 #include "core/error.hpp"
+#include "core/parameter.hpp"
 #include "io/atomic_file.hpp"
 #include "materials/drucker_prager.hpp"
 #include "materials/linear_elastic.hpp"
@@ -567,6 +568,10 @@ class CheckpointAccess {
       seen[id] = 1;
       if (p.body[k] >= m.bodies_.size() || p.material[k] >= m.material_count())
         r.fail("particle " + std::to_string(id) + " names a body or material that does not exist");
+      // 1 / (2 ppc) at creation: wider, a uGIMP support would reach nodes its 3-node stencil lacks.
+      if (!(p.half_width[k] > 0.0 && p.half_width[k] <= 0.5))
+        r.fail("particle " + std::to_string(id) + " has a half-width of " + number_text(p.half_width[k]) +
+               " cells, outside (0, 0.5]");
     }
     m.index_of_id_.clear();
     m.material_lists_valid_ = false;

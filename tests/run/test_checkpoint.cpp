@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -457,4 +458,32 @@ TEST_CASE("checkpoint: a function history is named and must be given again", "[r
   restore_checkpoint(checkpoint, c, {{"base.vx", std::make_shared<ConstantHistory>(0.25)}});
   CHECK(c.model().rigid_motion(1).velocity[0]->at(3.0) == 0.25);
   CHECK(c.model().rigid_motion(1).velocity[1]->at(3.0) == 0.0);  // the saved constant
+}
+
+TEST_CASE("checkpoint: a particle half-width not above 0 or over 0.5 cells is refused",
+          "[run][checkpoint][robustness]") {
+  const std::string dir = temp_dir("seismpm_ckpt_half_width");
+  for (const double bad : {0.0, -0.25, 0.75, std::numeric_limits<double>::quiet_NaN()}) {
+    CAPTURE(bad);
+    const std::string file = dir + "/half_width.chk";
+    {
+      auto b = shaken_slope(dir);
+      b->model().particles().half_width[5] = bad;
+      write_checkpoint(*b, file);
+    }
+    const CheckpointReader checkpoint(file);
+    Simulation<2> c(checkpoint_settings<2>(checkpoint));
+    CHECK_THROWS_WITH(restore_checkpoint(checkpoint, c),
+                      Catch::Contains(file) && Catch::Contains("half-width") && Catch::Contains("(0, 0.5]"));
+  }
+  // The written half-widths themselves (1 / (2 ppc)) are read back.
+  const std::string file = dir + "/good.chk";
+  {
+    auto b = shaken_slope(dir);
+    write_checkpoint(*b, file);
+  }
+  const CheckpointReader checkpoint(file);
+  Simulation<2> c(checkpoint_settings<2>(checkpoint));
+  restore_checkpoint(checkpoint, c);
+  CHECK(c.model().particles().half_width[5] == 0.25);
 }
