@@ -276,6 +276,11 @@ class Model {
   };
   template <class CellOf>
   const char* closable_flags(CellOf&& cell_of, const std::vector<CellSums>& sums) const;
+  // A deformable particle's share of its cell's volume and stress-free volume.
+  void add_volumes(CellSums& cell, std::size_t p) const {
+    cell.volume += particles_.volume[p];
+    cell.free_volume += free_volume(p);
+  }
 
   ModelSettings<Dim> settings_;
   Grid<Dim> grid_;

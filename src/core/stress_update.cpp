@@ -88,9 +88,7 @@ void Model<Dim>::sum_cell_volumes() {
       const int p = *k;
       if constexpr (Contact)
         if (contact_.any_rigid() && contact_.rigid(P.body[p])) continue;  // no strain of their own
-      CellSums& cell = cell_sums_[cell_of[p]];
-      cell.volume += P.volume[p];
-      cell.free_volume += free_volume(p);
+      add_volumes(cell_sums_[cell_of[p]], p);
     }
   });
 }
@@ -123,9 +121,9 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
     if constexpr (Contact)
       if (contact_.rigid(P.body[p])) continue;
     Sym& de = strain_increment_[p];
+    const CellSums* cell = average ? &cell_sums_[cell_of[p]] : nullptr;
     if (average) {
-      const CellSums& cell = cell_sums_[cell_of[p]];
-      const double correction = (cell.dilation / cell.volume - trace(de)) / Dim;
+      const double correction = (cell->dilation / cell->volume - trace(de)) / Dim;
       for (int d = 0; d < Dim; ++d) de[d] += correction;
     }
     Mat3 w = Mat3::Zero();
@@ -145,7 +143,7 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
     // cell of unequal neighbours opened some while others carried the load, and stress-free particles
     // in a resting deposit's surface kept it creeping (docs/kernel.md).
     if (-trace(de) > 0.0 && (average ? closes_by_cell(p, cell_of[p]) : opened(p))) {
-      const double opening = average ? std::log(cell_sums_[cell_of[p]].volume / cell_sums_[cell_of[p]].free_volume)
+      const double opening = average ? std::log(cell->volume / cell->free_volume)
                                      : std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
       const double closing = std::min(-trace(de), opening);
       for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
@@ -169,9 +167,7 @@ const char* Model<Dim>::closable_particles() const {
   std::vector<CellSums> sums(grid_.cell_count(), CellSums{0.0, 0.0, 0.0});
   for (std::size_t p = 0; p < P.size(); ++p) {
     if (any_rigid && contact_.rigid(P.body[p])) continue;
-    CellSums& cell = sums[cells.of(P.x[p])];
-    cell.volume += P.volume[p];
-    cell.free_volume += free_volume(p);
+    add_volumes(sums[cells.of(P.x[p])], p);
   }
   return closable_flags([&](int p) { return cells.of(P.x[p]); }, sums);
 }
