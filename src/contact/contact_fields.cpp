@@ -210,8 +210,8 @@ int ContactFields<Dim>::mark_cell_fields(const Particles<Dim>& particles, const 
 }
 
 // Every node each cell's fields reach; returns a node that more than kSlots fields meet at, or -1.
-// Slabs of one colour are 4 cells apart: the nodes they mark never meet. A cell that follows its left
-// neighbour in the list with the same fields marks only its last column of nodes: the neighbour has
+// Slabs of one colour never reach the same node (ScatterSchedule), so the nodes they mark never meet. A cell that
+// follows its left neighbour in the list with the same fields marks only its last column of nodes: the neighbour has
 // marked the others with those fields already, so the marks, and the order in which nodes are first
 // marked, are those of marking every node (the slab's particles are sorted by cell, so most cells
 // follow their left neighbour).
@@ -226,8 +226,8 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
   // the slabs went to the threads in no order and two threads gained little over one).
   auto cells_of = [&](int sl) { return static_cast<long>(slab_cells_[sl].size()); };
 #pragma omp parallel
-  for (int colour = 0; colour < 2; ++colour) {
-    ScatterSchedule::for_my_share(colour, 2, slabs, cells_of, [&](int sl) {
+  for (int colour = 0; colour < ScatterSchedule::kColours; ++colour) {
+    ScatterSchedule::for_my_share(colour, ScatterSchedule::kColours, slabs, cells_of, [&](int sl) {
       auto& touched = slab_nodes_[sl];
       std::array<int, Dim> last{};
       const FieldSet* last_fields = nullptr;

@@ -1,7 +1,7 @@
 // Race-free, deterministic particle-to-grid scatter. The grid is cut into slabs of whole cells
-// along one axis (CellIndex picks it); slabs of one colour (even or odd) never touch the same
-// node, so each colour runs in parallel, and every node sums its contributions in the same order whatever the number of
-// threads: results are bit-identical for any thread count.
+// along one axis (CellIndex picks it); slab s has colour s mod kColours, and slabs of one colour never
+// touch the same node, so each colour runs in parallel, and every node sums its contributions in the same order
+// whatever the number of threads: results are bit-identical for any thread count.
 #pragma once
 
 #include <omp.h>
@@ -12,8 +12,13 @@ namespace seismpm {
 
 class ScatterSchedule {
  public:
-  // 4 cells: a uGIMP particle in cell c touches nodes c-1 .. c+2, so slabs 2 apart need >= 3 cells.
-  static constexpr int kSlabCells = 4;
+  // A uGIMP particle in cell c touches nodes c-1 .. c+2, so slabs of one colour need more than 2 cells
+  // between them: (kColours - 1) kSlabCells >= 3. Slabs of one cell layer in 4 colours share the
+  // particles among threads in finer pieces than slabs of 4 layers in 2: the sand column (40 layers)
+  // made 5 slabs a colour, split 3 to 2 between two threads, and both transfers waited on the larger.
+  static constexpr int kSlabCells = 1;
+  static constexpr int kColours = 4;
+  static_assert((kColours - 1) * kSlabCells >= 3, "slabs of one colour must not reach the same node");
 
   // `cell_of(p)` gives the particle's cell index along the slab axis, already clamped to the grid.
   // A stable counting sort by slab: particles of a slab in increasing index. Threads count and place
@@ -81,8 +86,8 @@ class ScatterSchedule {
   void for_each(F&& f) const {
     const int slabs = static_cast<int>(begin_.size()) - 1;
 #pragma omp parallel
-    for (int colour = 0; colour < 2; ++colour) {
-      for_my_slabs(colour, 2, slabs, [&](int s) {
+    for (int colour = 0; colour < kColours; ++colour) {
+      for_my_slabs(colour, kColours, slabs, [&](int s) {
         for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
       });
 #pragma omp barrier

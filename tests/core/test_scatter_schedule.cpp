@@ -1,5 +1,5 @@
 // The scatter schedule: every particle once, each slab's particles in order, slabs of one colour
-// never at the same time as a slab of the other, and threads sharing the particles evenly by whole
+// never at the same time as a slab of another, and threads sharing the particles evenly by whole
 // slabs, whatever the number of threads.
 #include <omp.h>
 
@@ -42,7 +42,7 @@ TEST_CASE("scatter schedule: every particle once, in order per slab, colours apa
     schedule.for_each([&](int p) {
       const int t = omp_get_thread_num();
       const int slab = cell[p] / ScatterSchedule::kSlabCells;
-      seen[t].push_back({t, slab, p, slab % 2});
+      seen[t].push_back({t, slab, p, slab % ScatterSchedule::kColours});
     });
     std::vector<int> count(n, 0);
     std::vector<long> load(threads, 0);
@@ -73,38 +73,52 @@ TEST_CASE("scatter schedule: every particle once, in order per slab, colours apa
     for (int s = 0; s < schedule.slabs(); ++s)
       largest = std::max<long>(largest, std::count_if(cell.begin(), cell.end(),
                                                       [&](int c) { return c / ScatterSchedule::kSlabCells == s; }));
-    for (int t = 0; t < threads; ++t) CHECK(load[t] <= n / threads + 2 * largest);
+    for (int t = 0; t < threads; ++t) CHECK(load[t] <= n / threads + ScatterSchedule::kColours * largest);
     if (threads == 2) CHECK(std::min(load[0], load[1]) > n / 4);  // both threads work
   }
   omp_set_num_threads(saved);
 }
 
-TEST_CASE("scatter schedule: each colour ends before the other starts") {
+TEST_CASE("scatter schedule: each colour ends before the next starts") {
   const int n = 4000, cells = 120;
+  constexpr int colours = ScatterSchedule::kColours;
   std::vector<int> cell(n);
   for (int p = 0; p < n; ++p) cell[p] = (p * 7) % cells;
+  auto colour_of = [&](int p) { return cell[p] / ScatterSchedule::kSlabCells % colours; };
   ScatterSchedule schedule;
   const int saved = omp_get_max_threads();
   for (int threads : {2, 3}) {
     omp_set_num_threads(threads);
     schedule.build(n, cells, [&](int p) { return cell[p]; });
-    const int colour0 = static_cast<int>(
-        std::count_if(cell.begin(), cell.end(), [](int c) { return c / ScatterSchedule::kSlabCells % 2 == 0; }));
-    int in_colour[2] = {0, 0};
+    int total[colours] = {}, in_colour[colours] = {};
+    for (int p = 0; p < n; ++p) ++total[colour_of(p)];
     bool overlap = false;
     schedule.for_each([&](int p) {
-      const int colour = cell[p] / ScatterSchedule::kSlabCells % 2;
-      int done0;
+      const int colour = colour_of(p);
+      for (int earlier = 0; earlier < colour; ++earlier) {
+        int done;
 #pragma omp atomic read
-      done0 = in_colour[0];
-      if (colour == 1 && done0 < colour0) overlap = true;  // a colour-1 slab while colour 0 still runs
+        done = in_colour[earlier];
+        if (done < total[earlier]) overlap = true;  // a slab of this colour while an earlier one still runs
+      }
 #pragma omp atomic
       in_colour[colour] += 1;
     });
     CHECK_FALSE(overlap);
-    CHECK(in_colour[0] + in_colour[1] == n);
+    for (int c = 0; c < colours; ++c) CHECK(in_colour[c] == total[c]);
   }
   omp_set_num_threads(saved);
+}
+
+// Slab s's particles reach nodes from its first cell - 1 to its last cell + 2 (uGIMP), and no other
+// slab of its colour may reach any of them.
+TEST_CASE("scatter schedule: slabs of one colour reach disjoint nodes") {
+  constexpr int w = ScatterSchedule::kSlabCells, colours = ScatterSchedule::kColours;
+  for (int s = 0; s < 20; ++s) {
+    const int last_node = (s + 1) * w - 1 + 2;
+    const int next_first_node = (s + colours) * w - 1;
+    CHECK(last_node < next_first_node);
+  }
 }
 
 TEST_CASE("scatter schedule: own-cell walk visits every particle once, slabs on one thread each") {
