@@ -29,13 +29,6 @@ class CellIndex {
         if (cells_[d] > cells_[slab_axis_]) slab_axis_ = d;
   }
   int slab_axis() const { return slab_axis_; }
-  // Cells in one layer across the slab axis.
-  int per_layer() const {
-    int n = 1;
-    for (int d = 0; d < Dim; ++d)
-      if (d != slab_axis_) n *= cells_[d];
-    return n;
-  }
   // Index of the cell holding x, clamped to the grid.
   int of(const Vec<Dim>& x) const { return of_coords(coords_of(x)); }
   // Coordinates of the cell holding x, clamped to the grid.

@@ -27,18 +27,21 @@ class ParticleSupport {
     const int n = static_cast<int>(particles.size());
     st.resize(n);
     cell_of.resize(n);
+    int* layer = schedule.layers(n);  // the cell index along the slab axis, for the schedule
+    const int axis = cells.slab_axis();
     int outside = n;
 #pragma omp parallel for schedule(static) reduction(min : outside)
     for (int p = 0; p < n; ++p) {
       std::array<int, Dim> cell;
-      if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], cell.data()))
+      if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], cell.data())) {
         cell_of[p] = cells.of_coords(cell);
-      else
+        layer[p] = cell[axis];
+      } else {
         outside = std::min(outside, p);
+      }
     }
     if (outside < n) return outside;
-    const int per_layer = cells.per_layer();
-    schedule.build(n, grid.cells(cells.slab_axis()), [&](int p) { return cell_of[p] / per_layer; });
+    schedule.build_from_layers(n, grid.cells(axis));
     return n;
   }
 

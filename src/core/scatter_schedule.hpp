@@ -21,12 +21,24 @@ class ScatterSchedule {
   static_assert((kColours - 1) * kSlabCells >= 3, "slabs of one colour must not reach the same node");
 
   // `cell_of(p)` gives the particle's cell index along the slab axis, already clamped to the grid.
-  // A stable counting sort by slab: particles of a slab in increasing index. Threads count and place
-  // contiguous chunks, which yields that same order whatever their number.
   template <class CellOf>
   void build(int particle_count, int cells_along_axis, CellOf&& cell_of) {
-    const int slabs = (cells_along_axis + kSlabCells - 1) / kSlabCells;
+    int* layer = layers(particle_count);
+    for (int p = 0; p < particle_count; ++p) layer[p] = cell_of(p);
+    build_from_layers(particle_count, cells_along_axis);
+  }
+  // Room for each particle's cell index along the slab axis, which the caller fills (in its own pass
+  // over the particles) before build_from_layers.
+  int* layers(int particle_count) {
     slab_of_.resize(particle_count);
+    return slab_of_.data();
+  }
+  // A stable counting sort by slab: particles of a slab in increasing index. Threads count and place
+  // contiguous chunks, which yields that same order whatever their number. Particles sorted by cell
+  // come slab by slab, so each thread keeps the current slab's count (and place) in a register until
+  // the slab changes: incremented in memory, every particle's update waited for the last one's store.
+  void build_from_layers(int particle_count, int cells_along_axis) {
+    const int slabs = (cells_along_axis + kSlabCells - 1) / kSlabCells;
     order_.resize(particle_count);
     begin_.assign(slabs + 1, 0);
 #pragma omp parallel
@@ -37,7 +49,16 @@ class ScatterSchedule {
       const int lo = static_cast<int>(static_cast<long>(particle_count) * t / threads);
       const int hi = static_cast<int>(static_cast<long>(particle_count) * (t + 1) / threads);
       int* count = counts_.data() + static_cast<std::size_t>(t) * slabs;
-      for (int p = lo; p < hi; ++p) ++count[slab_of_[p] = cell_of(p) / kSlabCells];
+      int run = -1, in_run = 0;
+      for (int p = lo; p < hi; ++p) {
+        const int s = slab_of_[p] /= kSlabCells;
+        if (s != run) {
+          if (run >= 0) count[run] += in_run;
+          run = s, in_run = 0;
+        }
+        ++in_run;
+      }
+      if (run >= 0) count[run] += in_run;
 #pragma omp barrier
 #pragma omp single
       {
@@ -54,7 +75,17 @@ class ScatterSchedule {
         }
         begin_[slabs] = running;
       }
-      for (int p = lo; p < hi; ++p) order_[count[slab_of_[p]]++] = p;
+      run = -1;
+      int place = 0;
+      for (int p = lo; p < hi; ++p) {
+        const int s = slab_of_[p];
+        if (s != run) {
+          if (run >= 0) count[run] = place;
+          run = s, place = count[s];
+        }
+        order_[place++] = p;
+      }
+      if (run >= 0) count[run] = place;
     }
   }
 
