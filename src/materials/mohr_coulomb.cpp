@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <type_traits>
 #include <vector>
 
 #include <omp.h>
@@ -276,6 +277,130 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
   return integrate_trial<true>(elastic_trial(stress, de, elastic_.lambda(), 2.0 * elastic_.shear()), plastic);
 }
 
+// integrate_plane at fixed strength for many entries at once: return_in_principal's candidates in
+// its order, each one's tests written as it writes them (a NaN passes them alike, and goes on to the
+// particle checks), the first that passes taken, else the apex; then the rotation back and the plastic
+// shear. The same tests in the same order, with every candidate computed and the first that passes
+// chosen by selects instead of branches, so that the loops vectorise (the results agree with
+// integrate_plane's to round-off: the compiler may fuse the products differently). The entries'
+// values are first copied into arrays a chunk at a time (the vectoriser does not load fields of the
+// entries in place).
+void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneReturns& out) const {
+  const ReturnTables& t = fixed_;
+  double a[6][3], db[6][3], r[6], inverse[8][3][3];
+  for (int j = 0; j < 6; ++j) {
+    for (int i = 0; i < 3; ++i) a[j][i] = t.a[j][i], db[j][i] = t.Db[j][i];
+    r[j] = t.r[j];
+  }
+  bool usable[8];
+  for (int c = 0; c < 8; ++c) {
+    usable[c] = t.usable[c];
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k) inverse[c][i][k] = t.inverse[c](i, k);
+  }
+  const double apex = std::min(t.apex, p_.tension);
+  const double floor = std::max({t.sigma_c, p_.tension, 1e-300});
+  const double vc = volumetric_compliance_, inv_2g = inverse_two_g_;
+  constexpr int kChunk = 128;
+  // Every array of doubles, the slots too: with narrower types beside them the vectoriser found no
+  // vector type for the loop.
+  alignas(64) double v0s[kChunk], v1s[kChunk], v2s[kChunk], ds[kChunk], rs[kChunk], xys[kChunk];
+  alignas(64) double s0s[kChunk], s1s[kChunk];
+  alignas(64) double tols[kChunk], res0[kChunk], res1[kChunk], res2[kChunk], done[kChunk];
+  for (int start = 0; start < count; start += kChunk) {
+    const int n = std::min(kChunk, count - start);
+    for (int i = 0; i < n; ++i) {
+      const Deferred& e = entries[start + i];
+      v0s[i] = e.principal.v[0], v1s[i] = e.principal.v[1], v2s[i] = e.principal.v[2];
+      ds[i] = e.principal.d, rs[i] = e.principal.r, xys[i] = e.trial[3];
+      s0s[i] = e.principal.slot[0], s1s[i] = e.principal.slot[1];
+    }
+    // Local, unaliased pointers: read through `out` in the loop, each store could have changed them.
+    double* __restrict xx = out.xx + start;
+    double* __restrict yy = out.yy + start;
+    double* __restrict zz = out.zz + start;
+    double* __restrict xy = out.xy + start;
+    double* __restrict shear = out.shear + start;
+    // Candidates [first, last) for every entry not yet settled: the face for all, the others only in
+    // a chunk where some entry is not on the face (most plastic entries of a shaken slope are, and
+    // seven more candidates each cost them more than the face saved).
+    auto try_candidates = [&](auto first, auto last) {
+      double missing = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const double sb[3] = {v0s[i], v1s[i], v2s[i]};
+        double res[3] = {res0[i], res1[i], res2[i]};
+        bool found = done[i] != 0.0;
+#pragma GCC unroll 8
+        for (int c = decltype(first)::value; c < decltype(last)::value; ++c) {
+          const Candidate& cand = kCandidates[c];
+          double f[3] = {0.0, 0.0, 0.0};
+#pragma GCC unroll 8
+          for (int k = 0; k < cand.n; ++k) {
+            const int j = cand.set[k];
+            f[k] = a[j][0] * sb[0] + a[j][1] * sb[1] + a[j][2] * sb[2] - r[j];
+          }
+          double dl[3];
+#pragma GCC unroll 8
+          for (int k = 0; k < 3; ++k)
+            dl[k] = inverse[c][k][0] * f[0] + inverse[c][k][1] * f[1] + inverse[c][k][2] * f[2];
+          bool take = usable[c] & !found;
+#pragma GCC unroll 8
+          for (int k = 0; k < cand.n; ++k) take &= !(dl[k] < -1e-12);
+          double v[3] = {sb[0], sb[1], sb[2]};
+#pragma GCC unroll 8
+          for (int k = 0; k < cand.n; ++k) {
+            const int j = cand.set[k];
+#pragma GCC unroll 8
+            for (int m = 0; m < 3; ++m) v[m] -= dl[k] * db[j][m];
+          }
+          const double tol = tols[i];
+          take &= !(v[0] < v[1] - tol) & !(v[1] < v[2] - tol);
+#pragma GCC unroll 8
+          for (int j = 0; j < 6; ++j) take &= !(a[j][0] * v[0] + a[j][1] * v[1] + a[j][2] * v[2] - r[j] > tol);
+#pragma GCC unroll 8
+          for (int m = 0; m < 3; ++m) res[m] = take ? v[m] : res[m];
+          found |= take;
+        }
+        res0[i] = res[0], res1[i] = res[1], res2[i] = res[2];
+        done[i] = found ? 1.0 : 0.0;
+        missing += found ? 0.0 : 1.0;
+      }
+      return missing;
+    };
+    for (int i = 0; i < n; ++i) {
+      tols[i] = 1e-10 * std::max(std::max(std::abs(v0s[i]), std::abs(v1s[i])), std::max(std::abs(v2s[i]), floor));
+      res0[i] = res1[i] = res2[i] = apex;  // where no candidate passes
+      done[i] = 0.0;
+    }
+    if (try_candidates(std::integral_constant<int, 0>{}, std::integral_constant<int, 1>{}) > 0.0)
+      try_candidates(std::integral_constant<int, 1>{}, std::integral_constant<int, 8>{});
+    for (int i = 0; i < n; ++i) {
+      const double sb[3] = {v0s[i], v1s[i], v2s[i]};
+      const double res[3] = {res0[i], res1[i], res2[i]};
+      // Back to tensor components: value i belongs to slot[i] (0 in-plane major, 1 minor, 2 zz).
+      const double s0 = s0s[i], s1 = s1s[i];
+      const double major = s0 == 0 ? res[0] : (s1 == 0 ? res[1] : res[2]);
+      const double minor = s0 == 1 ? res[0] : (s1 == 1 ? res[1] : res[2]);
+      const double out_zz = s0 == 2 ? res[0] : (s1 == 2 ? res[1] : res[2]);
+      // r = 0 (then d = xy = 0): cos 2 theta = 1 and sin 2 theta = 0, by arithmetic on round = (r > 0).
+      const double rr = rs[i], round = rr > 0.0;  // 1 or 0
+      const double inv_r = 1.0 / (rr + (1.0 - round));
+      const double cos2 = round * (ds[i] * inv_r) + (1.0 - round), sin2 = xys[i] * inv_r;
+      const double mean = 0.5 * (major + minor), half = 0.5 * (major - minor);
+      xx[i] = mean + half * cos2;
+      yy[i] = mean - half * cos2;
+      zz[i] = out_zz;
+      xy[i] = half * sin2;
+      // The plastic strain D^-1 (trial - result) and its equivalent shear.
+      const double e0 = sb[0] - res[0], e1 = sb[1] - res[1], e2 = sb[2] - res[2];
+      const double vol = vc * (e0 + e1 + e2);
+      const double p0 = (e0 - vol) * inv_2g, p1 = (e1 - vol) * inv_2g, p2 = (e2 - vol) * inv_2g;
+      const double m = (p0 + p1 + p2) * (1.0 / 3.0);
+      shear[i] = std::sqrt(2.0 / 3.0 * ((p0 - m) * (p0 - m) + (p1 - m) * (p1 - m) + (p2 - m) * (p2 - m)));
+    }
+  }
+}
+
 // Two passes in one parallel region. The first, each thread over its own block of particles (as a
 // static schedule), settles the elastic trials inline and lists the rest, with their trials, in order
 // in its block's part of the scratch list. The second shares the listed returns evenly: the yielding
@@ -326,11 +451,40 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
     for (int j = 0; j < nt; ++j) total += listed[j + 1];
     const int first = static_cast<int>(static_cast<long>(total) * t / nt);
     const int last = static_cast<int>(static_cast<long>(total) * (t + 1) / nt);
+#pragma omp single
+    {
+      plane_scratch_.resize(5 * static_cast<std::size_t>(total));
+    }  // (the single's barrier: every thread sees the scratch sized)
+    const std::size_t n_total = static_cast<std::size_t>(total);
+    double* scratch = plane_scratch_.data();
+    const PlaneReturns plane{scratch, scratch + n_total, scratch + 2 * n_total, scratch + 3 * n_total,
+                             scratch + 4 * n_total};
+    // The plane-strain returns of this thread's entries at fixed strength, block by block (each block's
+    // entries are contiguous), into the scratch at the entries' places in the concatenation. Entries
+    // of 3D trials get values there too, which nothing reads.
+    if (fixed_strength && first < last) {
+      int blk = 0, done = 0;  // entries in the blocks before blk
+      for (; blk < nt && done + listed[blk + 1] <= first; ++blk) done += listed[blk + 1];
+      for (int e = first; e < last; ++blk) {
+        const int upto = std::min(last, done + listed[blk + 1]);
+        const PlaneReturns at{plane.xx + e, plane.yy + e, plane.zz + e, plane.xy + e, plane.shear + e};
+        plane_returns(deferred.data() + block_start(blk) + (e - done), upto - e, at);
+        done += listed[blk + 1];
+        e = upto;
+      }
+    }
     int block = 0, before = 0;  // entries in the blocks before `block`
     for (int e = first; e < last; ++e) {
       while (e >= before + listed[block + 1]) before += listed[++block];
       const Deferred& d = deferred[block_start(block) + (e - before)];
       const int p = b.index[d.k];
+      if (fixed_strength && d.plane) {  // plastic: the trial was not elastic
+        Sym& s = b.stress[p];
+        s[0] = plane.xx[e], s[1] = plane.yy[e], s[2] = plane.zz[e], s[3] = plane.xy[e], s[4] = 0.0, s[5] = 0.0;
+        b.plastic_strain[p] += plane.shear[e];
+        b.yield[p] = 1;
+        continue;
+      }
       // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
       const Result r = d.plane ? integrate_plane<false>(d.trial, d.principal, b.plastic_strain[p])
                                : integrate_trial<false>(d.trial, b.plastic_strain[p]);

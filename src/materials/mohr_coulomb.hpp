@@ -110,6 +110,14 @@ class MohrCoulomb : public Material {
     int k;  // in the batch
   };
   mutable std::vector<Deferred> deferred_;
+  // integrate_plane at fixed strength for `count` deferred entries of plane-strain trials that yield,
+  // in arithmetic the compiler vectorises over the entries: entry i's stress (xx, yy, zz, xy; xz = yz =
+  // 0) and its equivalent plastic shear increment.
+  struct PlaneReturns {
+    double *xx, *yy, *zz, *xy, *shear;
+  };
+  void plane_returns(const Deferred* entries, int count, const PlaneReturns& out) const;
+  mutable std::vector<double> plane_scratch_;  // 5 arrays of the listed entries' count: xx, yy, zz, xy, shear
   mutable std::vector<int> listed_;  // per thread t, at t + 1: how many of its block's entries deferred_ holds
 };
 

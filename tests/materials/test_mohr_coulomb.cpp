@@ -270,3 +270,49 @@ TEST_CASE("the batch update is one integrate() per particle for any number of th
   }
   omp_set_num_threads(saved);
 }
+
+// The batch update makes plane-strain returns at fixed strength in a vectorised form of its own: every
+// one must be integrate()'s (the general return's) to round-off, the face, the edges, the apex and
+// the tension planes alike. Random plane-strain trials around the surface, with and without dilation
+// and a tension cut-off, in a batch whose size leaves the vector loop and its remainder some entries.
+TEST_CASE("the batch's plane-strain returns are integrate()'s to round-off", "[materials][mohr_coulomb]") {
+  for (const auto& p : {soil(0.0, 19.8, 0.0, 0.0), soil(10e3, 30, 10, 2e3), soil(5e3, 35, 35, 0.0)}) {
+    const MohrCoulomb mc(p);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int n = 1001;
+    std::vector<Sym> stress(n), de(n);
+    std::vector<double> plastic(n, 0.0);
+    for (int k = 0; k < n; ++k) {
+      const double mean = -50e3 * (1.0 + u(rng));  // 0 to -100 kPa: near the apex too
+      stress[k] = diagonal(mean * (1.0 + 0.3 * u(rng)), mean * (1.0 + 0.3 * u(rng)), mean * (1.0 + 0.3 * u(rng)));
+      stress[k][3] = 0.2 * mean * u(rng);
+      for (int i = 0; i < 4; ++i) de[k][i] = 2e-3 * u(rng);
+      de[k][4] = de[k][5] = 0.0;
+    }
+    std::vector<int> index(n);
+    for (int k = 0; k < n; ++k) index[k] = k;
+    std::vector<Sym> s = stress;
+    std::vector<double> e = plastic;
+    std::vector<std::uint8_t> yield(n, 2);
+    StressUpdate b{index.data(), n, s.data(), de.data(), e.data(), yield.data()};
+    mc.update_stress(b);
+    int faces = 0, others = 0;
+    double worst = 0.0, worst_shear = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const auto r = mc.integrate(stress[k], de[k], plastic[k]);
+      faces += r.kind == MohrCoulomb::Return::Face;
+      others += r.kind != MohrCoulomb::Return::Face && r.kind != MohrCoulomb::Return::Elastic;
+      // Relative to the stress level: near the apex the result is round-off of the trial's size.
+      const double size = std::max(stress[k].cwiseAbs().maxCoeff(), 1.0);
+      worst = std::max(worst, (s[k] - r.stress).cwiseAbs().maxCoeff() / size);
+      worst_shear = std::max(worst_shear, std::abs(e[k] - r.shear_increment) / std::max(r.shear_increment, 1e-12));
+      REQUIRE(yield[k] == (r.kind != MohrCoulomb::Return::Elastic));
+    }
+    CAPTURE(p.cohesion, p.friction, faces, others);
+    CHECK(faces > n / 10);   // the face ...
+    CHECK(others > n / 50);  // ... and the other returns are exercised
+    CHECK(worst < 1e-12);
+    CHECK(worst_shear < 1e-9);
+  }
+}
