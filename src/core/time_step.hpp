@@ -16,6 +16,7 @@ namespace seismpm {
 struct MaterialConstants {
   std::vector<double> p_wave_modulus, initial_density, bulk_modulus, shear_modulus;
   std::vector<double> tensionless;                    // 1 or 0: doubles, which the vectorised time step can gather
+  std::vector<double> intact_wave_squared;            // M / rho_0 (m2/s2): a division once, not per particle
   std::vector<double> rayleigh_alpha, rayleigh_beta;  // 1/s, s
   bool any_rayleigh = false;                          // some material is Rayleigh-damped
   bool any_tensionless = false;                       // some material has no tensile strength
@@ -26,6 +27,7 @@ struct MaterialConstants {
     bulk_modulus.push_back(m.bulk_modulus());
     shear_modulus.push_back(m.shear_modulus());
     tensionless.push_back(m.tensionless() ? 1.0 : 0.0);
+    intact_wave_squared.push_back(m.p_wave_modulus() / m.density());
     rayleigh_alpha.push_back(m.rayleigh().alpha);
     rayleigh_beta.push_back(m.rayleigh().beta);
     any_rayleigh = any_rayleigh || m.rayleigh().any();

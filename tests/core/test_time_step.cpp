@@ -40,3 +40,34 @@ TEST_CASE("an opened particle's wave speed is the one at its initial density", "
   c.crack_closure = false;
   CHECK(wave_speed(P, c, 1) == Approx(std::sqrt(M / (2000 / 1.8))));
 }
+
+// The vectorised time step (stable_time_step) against the particle-by-particle speeds (signal_speed
+// through fastest_signal), exactly: with crack closure and a tensionless material (opened particles
+// at their initial density), without closure, and with no tensionless material (where the loop skips
+// the unloaded speed altogether).
+TEST_CASE("the step's fastest signal is the particles' own, with and without crack closure", "[core][time_step]") {
+  MohrCoulombParameters p;
+  p.density = 2000;
+  p.young = 5e7;
+  p.poisson = 0.3;
+  p.friction = 30;
+  const MohrCoulomb sand(p);
+  const LinearElastic rock(2500, 1e6, 0.25);  // soft: the loosest sand particles set the step
+  for (const bool with_sand : {true, false})
+    for (const bool closure : {true, false}) {
+      MaterialConstants c;
+      c.add(with_sand ? static_cast<const Material&>(sand) : rock);
+      c.add(rock);
+      c.crack_closure = closure;
+      Particles<2> P;
+      for (int k = 0; k < 37; ++k) {  // looser and denser than the initial density, moving
+        const double volume = 0.01 * (0.8 + 0.05 * k), material = k % 3 == 0 ? 1 : 0;
+        P.add(Vec<2>(0.5, 0.5), 2000 * 0.01, volume, 0.25, 0, static_cast<int>(material));
+        P.v.back() = Vec<2>(0.01 * k, -0.02 * (k % 5));
+      }
+      const double cfl = 0.4, cell = 0.01;
+      const auto [fastest, speed] = fastest_signal(P, c, cell, nullptr);
+      CAPTURE(with_sand, closure, fastest);
+      CHECK(stable_time_step(P, c, cfl, cell, nullptr) == cfl * cell / speed);
+    }
+}
