@@ -301,7 +301,7 @@ void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneR
   const double apex = std::min(t.apex, p_.tension);
   const double floor = std::max({t.sigma_c, p_.tension, 1e-300});
   const double vc = volumetric_compliance_, inv_2g = inverse_two_g_;
-  constexpr int kChunk = 128;
+  constexpr int kChunk = kPlaneChunk;
   // Every array of doubles, the slots too: with narrower types beside them the vectoriser found no
   // vector type for the loop.
   alignas(64) double v0s[kChunk], v1s[kChunk], v2s[kChunk], ds[kChunk], rs[kChunk], xys[kChunk];
@@ -451,46 +451,39 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
     for (int j = 0; j < nt; ++j) total += listed[j + 1];
     const int first = static_cast<int>(static_cast<long>(total) * t / nt);
     const int last = static_cast<int>(static_cast<long>(total) * (t + 1) / nt);
-#pragma omp single
-    {
-      plane_scratch_.resize(5 * static_cast<std::size_t>(total));
-    }  // (the single's barrier: every thread sees the scratch sized)
-    const std::size_t n_total = static_cast<std::size_t>(total);
-    double* scratch = plane_scratch_.data();
-    const PlaneReturns plane{scratch, scratch + n_total, scratch + 2 * n_total, scratch + 3 * n_total,
-                             scratch + 4 * n_total};
-    // The plane-strain returns of this thread's entries at fixed strength, block by block (each block's
-    // entries are contiguous), into the scratch at the entries' places in the concatenation. Entries
-    // of 3D trials get values there too, which nothing reads.
-    if (fixed_strength && first < last) {
-      int blk = 0, done = 0;  // entries in the blocks before blk
-      for (; blk < nt && done + listed[blk + 1] <= first; ++blk) done += listed[blk + 1];
-      for (int e = first; e < last; ++blk) {
-        const int upto = std::min(last, done + listed[blk + 1]);
-        const PlaneReturns at{plane.xx + e, plane.yy + e, plane.zz + e, plane.xy + e, plane.shear + e};
-        plane_returns(deferred.data() + block_start(blk) + (e - done), upto - e, at);
-        done += listed[blk + 1];
-        e = upto;
-      }
-    }
+    // This thread's entries block by block (each block's entries are contiguous in `deferred`), a chunk
+    // at a time: the chunk's plane-strain returns at fixed strength together (plane_returns; entries of
+    // 3D trials get values too, which nothing reads), then each entry's result written or its general
+    // return made. The results of one chunk at a time: kept for every listed entry, they cost 24 bytes a
+    // particle of peak memory in bench/memory.sh's block.
+    alignas(64) double xx[kPlaneChunk], yy[kPlaneChunk], zz[kPlaneChunk], xy[kPlaneChunk], shear[kPlaneChunk];
+    const PlaneReturns plane{xx, yy, zz, xy, shear};
     int block = 0, before = 0;  // entries in the blocks before `block`
-    for (int e = first; e < last; ++e) {
-      while (e >= before + listed[block + 1]) before += listed[++block];
-      const Deferred& d = deferred[block_start(block) + (e - before)];
-      const int p = b.index[d.k];
-      if (fixed_strength && d.plane) {  // plastic: the trial was not elastic
-        Sym& s = b.stress[p];
-        s[0] = plane.xx[e], s[1] = plane.yy[e], s[2] = plane.zz[e], s[3] = plane.xy[e], s[4] = 0.0, s[5] = 0.0;
-        b.plastic_strain[p] += plane.shear[e];
-        b.yield[p] = 1;
-        continue;
+    while (block < nt && before + listed[block + 1] <= first) before += listed[++block];
+    for (int e = first; e < last;) {
+      const int block_end = std::min(last, before + listed[block + 1]);
+      const Deferred* entries = deferred.data() + block_start(block) + (e - before);
+      const int n = std::min(kPlaneChunk, block_end - e);
+      if (fixed_strength) plane_returns(entries, n, plane);
+      for (int i = 0; i < n; ++i) {
+        const Deferred& d = entries[i];
+        const int p = b.index[d.k];
+        if (fixed_strength && d.plane) {  // plastic: the trial was not elastic
+          Sym& s = b.stress[p];
+          s[0] = xx[i], s[1] = yy[i], s[2] = zz[i], s[3] = xy[i], s[4] = 0.0, s[5] = 0.0;
+          b.plastic_strain[p] += shear[i];
+          b.yield[p] = 1;
+          continue;
+        }
+        // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
+        const Result r = d.plane ? integrate_plane<false>(d.trial, d.principal, b.plastic_strain[p])
+                                 : integrate_trial<false>(d.trial, b.plastic_strain[p]);
+        b.stress[p] = r.stress;
+        b.plastic_strain[p] += r.shear_increment;
+        b.yield[p] = r.kind != Return::Elastic;
       }
-      // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-      const Result r = d.plane ? integrate_plane<false>(d.trial, d.principal, b.plastic_strain[p])
-                               : integrate_trial<false>(d.trial, b.plastic_strain[p]);
-      b.stress[p] = r.stress;
-      b.plastic_strain[p] += r.shear_increment;
-      b.yield[p] = r.kind != Return::Elastic;
+      e += n;
+      if (e == before + listed[block + 1]) before += listed[++block];  // the block is done
     }
   }
 }

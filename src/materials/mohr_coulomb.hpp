@@ -117,8 +117,8 @@ class MohrCoulomb : public Material {
     double *xx, *yy, *zz, *xy, *shear;
   };
   void plane_returns(const Deferred* entries, int count, const PlaneReturns& out) const;
-  mutable std::vector<double> plane_scratch_;  // 5 arrays of the listed entries' count: xx, yy, zz, xy, shear
-  mutable std::vector<int> listed_;  // per thread t, at t + 1: how many of its block's entries deferred_ holds
+  static constexpr int kPlaneChunk = 128;  // entries plane_returns takes at a time
+  mutable std::vector<int> listed_;        // per thread t, at t + 1: how many of its block's entries deferred_ holds
 };
 
 }  // namespace seismpm
