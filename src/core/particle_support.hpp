@@ -41,7 +41,7 @@ class ParticleSupport {
       }
     }
     if (outside < n) return outside;
-    schedule.build_from_layers(n, grid.cells(axis));
+    schedule.build(n, grid.cells(axis));
     return n;
   }
 

@@ -20,15 +20,8 @@ class ScatterSchedule {
   static constexpr int kColours = 4;
   static_assert((kColours - 1) * kSlabCells >= 3, "slabs of one colour must not reach the same node");
 
-  // `cell_of(p)` gives the particle's cell index along the slab axis, already clamped to the grid.
-  template <class CellOf>
-  void build(int particle_count, int cells_along_axis, CellOf&& cell_of) {
-    int* layer = layers(particle_count);
-    for (int p = 0; p < particle_count; ++p) layer[p] = cell_of(p);
-    build_from_layers(particle_count, cells_along_axis);
-  }
-  // Room for each particle's cell index along the slab axis, which the caller fills (in its own pass
-  // over the particles) before build_from_layers.
+  // Room for each particle's cell index along the slab axis (clamped to the grid), which the caller
+  // fills (in its own pass over the particles) before build.
   int* layers(int particle_count) {
     slab_of_.resize(particle_count);
     return slab_of_.data();
@@ -37,7 +30,7 @@ class ScatterSchedule {
   // contiguous chunks, which yields that same order whatever their number. Particles sorted by cell
   // come slab by slab, so each thread keeps the current slab's count (and place) in a register until
   // the slab changes: incremented in memory, every particle's update waited for the last one's store.
-  void build_from_layers(int particle_count, int cells_along_axis) {
+  void build(int particle_count, int cells_along_axis) {
     const int slabs = (cells_along_axis + kSlabCells - 1) / kSlabCells;
     order_.resize(particle_count);
     begin_.assign(slabs + 1, 0);

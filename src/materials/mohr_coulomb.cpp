@@ -307,97 +307,94 @@ void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneR
   alignas(64) double v0s[kChunk], v1s[kChunk], v2s[kChunk], ds[kChunk], rs[kChunk], xys[kChunk];
   alignas(64) double s0s[kChunk], s1s[kChunk];
   alignas(64) double tols[kChunk], res0[kChunk], res1[kChunk], res2[kChunk], done[kChunk];
-  for (int start = 0; start < count; start += kChunk) {
-    const int n = std::min(kChunk, count - start);
-    for (int i = 0; i < n; ++i) {
-      const Deferred& e = entries[start + i];
-      v0s[i] = e.principal.v[0], v1s[i] = e.principal.v[1], v2s[i] = e.principal.v[2];
-      ds[i] = e.principal.d, rs[i] = e.principal.r, xys[i] = e.trial[3];
-      s0s[i] = e.principal.slot[0], s1s[i] = e.principal.slot[1];
-    }
-    // Local, unaliased pointers: read through `out` in the loop, each store could have changed them.
-    double* __restrict xx = out.xx + start;
-    double* __restrict yy = out.yy + start;
-    double* __restrict zz = out.zz + start;
-    double* __restrict xy = out.xy + start;
-    double* __restrict shear = out.shear + start;
-    // Candidates [first, last) for every entry not yet settled: the face for all, the others only in
-    // a chunk where some entry is not on the face (most plastic entries of a shaken slope are, and
-    // seven more candidates each cost them more than the face saved).
-    auto try_candidates = [&](auto first, auto last) {
-      double missing = 0.0;
-      for (int i = 0; i < n; ++i) {
-        const double sb[3] = {v0s[i], v1s[i], v2s[i]};
-        double res[3] = {res0[i], res1[i], res2[i]};
-        bool found = done[i] != 0.0;
-#pragma GCC unroll 8
-        for (int c = decltype(first)::value; c < decltype(last)::value; ++c) {
-          const Candidate& cand = kCandidates[c];
-          double f[3] = {0.0, 0.0, 0.0};
-#pragma GCC unroll 8
-          for (int k = 0; k < cand.n; ++k) {
-            const int j = cand.set[k];
-            f[k] = a[j][0] * sb[0] + a[j][1] * sb[1] + a[j][2] * sb[2] - r[j];
-          }
-          double dl[3];
-#pragma GCC unroll 8
-          for (int k = 0; k < 3; ++k)
-            dl[k] = inverse[c][k][0] * f[0] + inverse[c][k][1] * f[1] + inverse[c][k][2] * f[2];
-          bool take = usable[c] & !found;
-#pragma GCC unroll 8
-          for (int k = 0; k < cand.n; ++k) take &= !(dl[k] < -1e-12);
-          double v[3] = {sb[0], sb[1], sb[2]};
-#pragma GCC unroll 8
-          for (int k = 0; k < cand.n; ++k) {
-            const int j = cand.set[k];
-#pragma GCC unroll 8
-            for (int m = 0; m < 3; ++m) v[m] -= dl[k] * db[j][m];
-          }
-          const double tol = tols[i];
-          take &= !(v[0] < v[1] - tol) & !(v[1] < v[2] - tol);
-#pragma GCC unroll 8
-          for (int j = 0; j < 6; ++j) take &= !(a[j][0] * v[0] + a[j][1] * v[1] + a[j][2] * v[2] - r[j] > tol);
-#pragma GCC unroll 8
-          for (int m = 0; m < 3; ++m) res[m] = take ? v[m] : res[m];
-          found |= take;
-        }
-        res0[i] = res[0], res1[i] = res[1], res2[i] = res[2];
-        done[i] = found ? 1.0 : 0.0;
-        missing += found ? 0.0 : 1.0;
-      }
-      return missing;
-    };
-    for (int i = 0; i < n; ++i) {
-      tols[i] = 1e-10 * std::max(std::max(std::abs(v0s[i]), std::abs(v1s[i])), std::max(std::abs(v2s[i]), floor));
-      res0[i] = res1[i] = res2[i] = apex;  // where no candidate passes
-      done[i] = 0.0;
-    }
-    if (try_candidates(std::integral_constant<int, 0>{}, std::integral_constant<int, 1>{}) > 0.0)
-      try_candidates(std::integral_constant<int, 1>{}, std::integral_constant<int, 8>{});
+  const int n = std::min(kChunk, count);  // the caller's chunk: count <= kPlaneChunk
+  for (int i = 0; i < n; ++i) {
+    const Deferred& e = entries[i];
+    v0s[i] = e.principal.v[0], v1s[i] = e.principal.v[1], v2s[i] = e.principal.v[2];
+    ds[i] = e.principal.d, rs[i] = e.principal.r, xys[i] = e.trial[3];
+    s0s[i] = e.principal.slot[0], s1s[i] = e.principal.slot[1];
+  }
+  // Local, unaliased pointers: read through `out` in the loop, each store could have changed them.
+  double* __restrict xx = out.xx;
+  double* __restrict yy = out.yy;
+  double* __restrict zz = out.zz;
+  double* __restrict xy = out.xy;
+  double* __restrict shear = out.shear;
+  // Candidates [first, last) for every entry not yet settled: the face for all, the others only in
+  // a chunk where some entry is not on the face (most plastic entries of a shaken slope are, and
+  // seven more candidates each cost them more than the face saved).
+  auto try_candidates = [&](auto first, auto last) {
+    double missing = 0.0;
     for (int i = 0; i < n; ++i) {
       const double sb[3] = {v0s[i], v1s[i], v2s[i]};
-      const double res[3] = {res0[i], res1[i], res2[i]};
-      // Back to tensor components: value i belongs to slot[i] (0 in-plane major, 1 minor, 2 zz).
-      const double s0 = s0s[i], s1 = s1s[i];
-      const double major = s0 == 0 ? res[0] : (s1 == 0 ? res[1] : res[2]);
-      const double minor = s0 == 1 ? res[0] : (s1 == 1 ? res[1] : res[2]);
-      const double out_zz = s0 == 2 ? res[0] : (s1 == 2 ? res[1] : res[2]);
-      // r = 0 (then d = xy = 0): cos 2 theta = 1 and sin 2 theta = 0, by arithmetic on round = (r > 0).
-      const double rr = rs[i], round = rr > 0.0;  // 1 or 0
-      const double inv_r = 1.0 / (rr + (1.0 - round));
-      const double cos2 = round * (ds[i] * inv_r) + (1.0 - round), sin2 = xys[i] * inv_r;
-      const double mean = 0.5 * (major + minor), half = 0.5 * (major - minor);
-      xx[i] = mean + half * cos2;
-      yy[i] = mean - half * cos2;
-      zz[i] = out_zz;
-      xy[i] = half * sin2;
-      // The plastic strain D^-1 (trial - result) and its equivalent shear.
-      const double e0 = sb[0] - res[0], e1 = sb[1] - res[1], e2 = sb[2] - res[2];
-      const double vol = vc * (e0 + e1 + e2);
-      const double p0 = (e0 - vol) * inv_2g, p1 = (e1 - vol) * inv_2g, p2 = (e2 - vol) * inv_2g;
-      const double m = (p0 + p1 + p2) * (1.0 / 3.0);
-      shear[i] = std::sqrt(2.0 / 3.0 * ((p0 - m) * (p0 - m) + (p1 - m) * (p1 - m) + (p2 - m) * (p2 - m)));
+      double res[3] = {res0[i], res1[i], res2[i]};
+      bool found = done[i] != 0.0;
+#pragma GCC unroll 8
+      for (int c = decltype(first)::value; c < decltype(last)::value; ++c) {
+        const Candidate& cand = kCandidates[c];
+        double f[3] = {0.0, 0.0, 0.0};
+#pragma GCC unroll 8
+        for (int k = 0; k < cand.n; ++k) {
+          const int j = cand.set[k];
+          f[k] = a[j][0] * sb[0] + a[j][1] * sb[1] + a[j][2] * sb[2] - r[j];
+        }
+        double dl[3];
+#pragma GCC unroll 8
+        for (int k = 0; k < 3; ++k) dl[k] = inverse[c][k][0] * f[0] + inverse[c][k][1] * f[1] + inverse[c][k][2] * f[2];
+        bool take = usable[c] & !found;
+#pragma GCC unroll 8
+        for (int k = 0; k < cand.n; ++k) take &= !(dl[k] < -1e-12);
+        double v[3] = {sb[0], sb[1], sb[2]};
+#pragma GCC unroll 8
+        for (int k = 0; k < cand.n; ++k) {
+          const int j = cand.set[k];
+#pragma GCC unroll 8
+          for (int m = 0; m < 3; ++m) v[m] -= dl[k] * db[j][m];
+        }
+        const double tol = tols[i];
+        take &= !(v[0] < v[1] - tol) & !(v[1] < v[2] - tol);
+#pragma GCC unroll 8
+        for (int j = 0; j < 6; ++j) take &= !(a[j][0] * v[0] + a[j][1] * v[1] + a[j][2] * v[2] - r[j] > tol);
+#pragma GCC unroll 8
+        for (int m = 0; m < 3; ++m) res[m] = take ? v[m] : res[m];
+        found |= take;
+      }
+      res0[i] = res[0], res1[i] = res[1], res2[i] = res[2];
+      done[i] = found ? 1.0 : 0.0;
+      missing += found ? 0.0 : 1.0;
     }
+    return missing;
+  };
+  for (int i = 0; i < n; ++i) {
+    tols[i] = 1e-10 * std::max(std::max(std::abs(v0s[i]), std::abs(v1s[i])), std::max(std::abs(v2s[i]), floor));
+    res0[i] = res1[i] = res2[i] = apex;  // where no candidate passes
+    done[i] = 0.0;
+  }
+  if (try_candidates(std::integral_constant<int, 0>{}, std::integral_constant<int, 1>{}) > 0.0)
+    try_candidates(std::integral_constant<int, 1>{}, std::integral_constant<int, 8>{});
+  for (int i = 0; i < n; ++i) {
+    const double sb[3] = {v0s[i], v1s[i], v2s[i]};
+    const double res[3] = {res0[i], res1[i], res2[i]};
+    // Back to tensor components: value i belongs to slot[i] (0 in-plane major, 1 minor, 2 zz).
+    const double s0 = s0s[i], s1 = s1s[i];
+    const double major = s0 == 0 ? res[0] : (s1 == 0 ? res[1] : res[2]);
+    const double minor = s0 == 1 ? res[0] : (s1 == 1 ? res[1] : res[2]);
+    const double out_zz = s0 == 2 ? res[0] : (s1 == 2 ? res[1] : res[2]);
+    // r = 0 (then d = xy = 0): cos 2 theta = 1 and sin 2 theta = 0, by arithmetic on round = (r > 0).
+    const double rr = rs[i], round = rr > 0.0;  // 1 or 0
+    const double inv_r = 1.0 / (rr + (1.0 - round));
+    const double cos2 = round * (ds[i] * inv_r) + (1.0 - round), sin2 = xys[i] * inv_r;
+    const double mean = 0.5 * (major + minor), half = 0.5 * (major - minor);
+    xx[i] = mean + half * cos2;
+    yy[i] = mean - half * cos2;
+    zz[i] = out_zz;
+    xy[i] = half * sin2;
+    // The plastic strain D^-1 (trial - result) and its equivalent shear.
+    const double e0 = sb[0] - res[0], e1 = sb[1] - res[1], e2 = sb[2] - res[2];
+    const double vol = vc * (e0 + e1 + e2);
+    const double p0 = (e0 - vol) * inv_2g, p1 = (e1 - vol) * inv_2g, p2 = (e2 - vol) * inv_2g;
+    const double m = (p0 + p1 + p2) * (1.0 / 3.0);
+    shear[i] = std::sqrt(2.0 / 3.0 * ((p0 - m) * (p0 - m) + (p1 - m) * (p1 - m) + (p2 - m) * (p2 - m)));
   }
 }
 
@@ -464,7 +461,9 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
       const int block_end = std::min(last, before + listed[block + 1]);
       const Deferred* entries = deferred.data() + block_start(block) + (e - before);
       const int n = std::min(kPlaneChunk, block_end - e);
-      if (fixed_strength) plane_returns(entries, n, plane);
+      bool any_plane = false;  // none in a 3D model: its chunks need no plane-strain returns
+      for (int i = 0; i < n; ++i) any_plane |= entries[i].plane;
+      if (fixed_strength && any_plane) plane_returns(entries, n, plane);
       for (int i = 0; i < n; ++i) {
         const Deferred& d = entries[i];
         const int p = b.index[d.k];

@@ -110,9 +110,9 @@ class MohrCoulomb : public Material {
     int k;  // in the batch
   };
   mutable std::vector<Deferred> deferred_;
-  // integrate_plane at fixed strength for `count` deferred entries of plane-strain trials that yield,
-  // in arithmetic the compiler vectorises over the entries: entry i's stress (xx, yy, zz, xy; xz = yz =
-  // 0) and its equivalent plastic shear increment.
+  // integrate_plane at fixed strength for `count` (at most kPlaneChunk) deferred entries of
+  // plane-strain trials that yield, in arithmetic the compiler vectorises over the entries: entry i's
+  // stress (xx, yy, zz, xy; xz = yz = 0) and its equivalent plastic shear increment.
   struct PlaneReturns {
     double *xx, *yy, *zz, *xy, *shear;
   };

@@ -24,6 +24,13 @@ std::vector<int> crowded_cells(int n) {
   return cell;
 }
 
+// The schedule of particles in the given cells along the slab axis.
+void build(ScatterSchedule& schedule, const std::vector<int>& cell, int cells) {
+  const int n = static_cast<int>(cell.size());
+  std::copy(cell.begin(), cell.end(), schedule.layers(n));
+  schedule.build(n, cells);
+}
+
 struct Visit {
   int thread, slab, particle, colour_round;  // colour_round: the slab's colour, 0 runs first
 };
@@ -37,7 +44,7 @@ TEST_CASE("scatter schedule: every particle once, in order per slab, colours apa
   const int saved = omp_get_max_threads();
   for (int threads : {1, 2, 3, 4}) {
     omp_set_num_threads(threads);
-    schedule.build(n, cells, [&](int p) { return cell[p]; });
+    build(schedule, cell, cells);
     std::vector<std::vector<Visit>> seen(threads);
     schedule.for_each([&](int p) {
       const int t = omp_get_thread_num();
@@ -89,7 +96,7 @@ TEST_CASE("scatter schedule: each colour ends before the next starts") {
   const int saved = omp_get_max_threads();
   for (int threads : {2, 3}) {
     omp_set_num_threads(threads);
-    schedule.build(n, cells, [&](int p) { return cell[p]; });
+    build(schedule, cell, cells);
     int total[colours] = {}, in_colour[colours] = {};
     for (int p = 0; p < n; ++p) ++total[colour_of(p)];
     bool overlap = false;
@@ -128,7 +135,7 @@ TEST_CASE("scatter schedule: own-cell walk visits every particle once, slabs on 
   const int saved = omp_get_max_threads();
   for (int threads : {1, 2, 3}) {
     omp_set_num_threads(threads);
-    schedule.build(n, cells, [&](int p) { return cell[p]; });
+    build(schedule, cell, cells);
     std::vector<int> count(n, 0), owner(schedule.slabs(), -1);
     bool shared_slab = false;
     schedule.for_each_in_own_cell_by_slab([&](int slab, int p) {
