@@ -88,8 +88,9 @@ void use_default_thread_waiting(char** argv) {
   const int cpus = usable_cpus();
   int threads = cpus;
   if (const char* n = std::getenv("OMP_NUM_THREADS")) threads = std::max(1, std::min(cpus, std::atoi(n)));
-  const bool passive = threads > 1 && wait_passively(busy_cores(), cpus, threads);
-  if ((passive ? setenv("OMP_WAIT_POLICY", "passive", 0) : setenv("GOMP_SPINCOUNT", "1000", 0)) != 0) return;
+  // On free cores libgomp's own spin: nothing to set, no new start.
+  if (threads < 2 || !wait_passively(busy_cores(), cpus, threads)) return;
+  if (setenv("OMP_WAIT_POLICY", "passive", 0) != 0) return;
   execv("/proc/self/exe", argv);
   // Still here: no /proc or no permission. The run goes on with libgomp's default.
 }

@@ -1,9 +1,11 @@
 // How OpenMP threads wait for work between the parallel loops of a step. Spinning (libgomp's default)
 // is fastest on an idle machine and ruinous on a busy one: a thread spinning at a barrier takes the
 // core that the thread it waits for, or another program, needs. Sleeping at once (passive) is never
-// slower than one thread but gives up most of a second thread's gain on an idle machine. Measured on
-// 2 cores (docs/kernel.md): a short spin keeps the idle speed; passive is best once the cores are busy.
-// The program therefore picks by the machine's load when it starts, unless the user chose
+// slower than one thread but gives up most of a second thread's gain on an idle machine. A short spin
+// (GOMP_SPINCOUNT=1000, about 30 us) sleeps at every wait longer than that, and on a virtual machine
+// each sleep and wake-up cost 50-90 us: the 2-core VM ran the shaking table 10-45 % slower with it
+// than with libgomp's spin (docs/kernel.md). The program therefore picks by the machine's load when it
+// starts: libgomp's default on free cores, passive on busy ones, unless the user chose
 // (OMP_WAIT_POLICY or GOMP_SPINCOUNT).
 #pragma once
 
@@ -12,7 +14,7 @@
 namespace seismpm::app {
 
 // The policy for `threads` threads on `cpus` cores while other programs keep `load` cores busy:
-// true for passive waiting (the cores are taken), false for a short spin.
+// true for passive waiting (the cores are taken), false for libgomp's spin.
 bool wait_passively(double load, int cpus, int threads);
 
 // The share of all cores' time that was taken (not idle) between two first lines of /proc/stat;
@@ -27,10 +29,10 @@ double busy_fraction(const std::string& before, const std::string& after);
 double busy_cores();
 
 // libgomp reads its settings once, when it is loaded, before main() runs: setting them now needs a new
-// start of the program. When neither variable is set, this sets one (OMP_WAIT_POLICY=passive, or
-// GOMP_SPINCOUNT=1000 for the short spin) and re-executes the program with the same arguments (once:
-// the variable is set the second time). Returns normally when nothing was needed or the re-execution
-// failed (the run then goes on with libgomp's default).
+// start of the program. When neither variable is set and the cores are busy, this sets
+// OMP_WAIT_POLICY=passive and re-executes the program with the same arguments (once: the variable is
+// set the second time). Returns normally when nothing was needed or the re-execution failed (the run
+// then goes on with libgomp's default).
 void use_default_thread_waiting(char** argv);
 
 }  // namespace seismpm::app
