@@ -3,9 +3,9 @@
 // core that the thread it waits for, or another program, needs. Sleeping at once (passive) is never
 // slower than one thread but gives up most of a second thread's gain on an idle machine. A short spin
 // (GOMP_SPINCOUNT=1000, about 30 us) sleeps at every wait longer than that, and on a virtual machine
-// each sleep and wake-up cost 50-90 us: the 2-core VM ran the shaking table 10-45 % slower with it
-// than with libgomp's spin (docs/kernel.md). The program therefore picks by the machine's load when it
-// starts: libgomp's default on free cores, passive on busy ones, unless the user chose
+// each sleep and wake-up cost 50-90 us: the 2-core VM ran the shaking table about a fifth slower
+// with it than with libgomp's spin (docs/kernel.md). The program therefore picks by the machine's
+// load when it starts: libgomp's default on free cores, passive on busy ones, unless the user chose
 // (OMP_WAIT_POLICY or GOMP_SPINCOUNT).
 #pragma once
 
