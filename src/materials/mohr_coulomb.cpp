@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -301,13 +302,14 @@ void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneR
   const double apex = std::min(t.apex, p_.tension);
   const double floor = std::max({t.sigma_c, p_.tension, 1e-300});
   const double vc = volumetric_compliance_, inv_2g = inverse_two_g_;
-  constexpr int kChunk = kPlaneChunk;
   // Every array of doubles, the slots too: with narrower types beside them the vectoriser found no
   // vector type for the loop.
+  constexpr int kChunk = kPlaneChunk;
   alignas(64) double v0s[kChunk], v1s[kChunk], v2s[kChunk], ds[kChunk], rs[kChunk], xys[kChunk];
   alignas(64) double s0s[kChunk], s1s[kChunk];
   alignas(64) double tols[kChunk], res0[kChunk], res1[kChunk], res2[kChunk], done[kChunk];
-  const int n = std::min(kChunk, count);  // the caller's chunk: count <= kPlaneChunk
+  assert(count <= kChunk);  // the caller's chunk
+  const int n = count;
   for (int i = 0; i < n; ++i) {
     const Deferred& e = entries[i];
     v0s[i] = e.principal.v[0], v1s[i] = e.principal.v[1], v2s[i] = e.principal.v[2];

@@ -61,8 +61,9 @@ TEST_CASE("the step's fastest signal is the particles' own, with and without cra
       c.crack_closure = closure;
       Particles<2> P;
       for (int k = 0; k < 37; ++k) {  // looser and denser than the initial density, moving
-        const double volume = 0.01 * (0.8 + 0.05 * k), material = k % 3 == 0 ? 1 : 0;
-        P.add(Vec<2>(0.5, 0.5), 2000 * 0.01, volume, 0.25, 0, static_cast<int>(material));
+        const double volume = 0.01 * (0.8 + 0.05 * k);
+        const int material = k % 3 == 0 ? 1 : 0;
+        P.add(Vec<2>(0.5, 0.5), 2000 * 0.01, volume, 0.25, 0, material);
         P.v.back() = Vec<2>(0.01 * k, -0.02 * (k % 5));
       }
       const double cfl = 0.4, cell = 0.01;
