@@ -3,6 +3,8 @@
 // per step and read by every transfer of the step (and by contact).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <type_traits>
 #include <vector>
 
@@ -30,15 +32,25 @@ class ParticleSupport {
     int* layer = schedule.layers(n);  // the cell index along the slab axis, for the schedule
     const int axis = cells.slab_axis();
     int outside = n;
+    const StencilFrame<Dim> frame(grid);
+    const auto place = [&](int p, const std::array<int, Dim>& cell) {
+      cell_of[p] = cells.of_coords(cell);
+      layer[p] = cell[axis];
+    };
+    const int blocks = (n + kStencilBlock - 1) / kStencilBlock;
 #pragma omp parallel for schedule(static) reduction(min : outside)
-    for (int p = 0; p < n; ++p) {
-      std::array<int, Dim> cell;
-      if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], cell.data())) {
-        cell_of[p] = cells.of_coords(cell);
-        layer[p] = cell[axis];
-      } else {
-        outside = std::min(outside, p);
+    for (int b = 0; b < blocks; ++b) {
+      const int first = b * kStencilBlock, count = std::min(kStencilBlock, n - first);
+      std::array<int, Dim> cell[kStencilBlock];
+      if (make_stencils<Shape>(frame, &particles.x[first], &particles.half_width[first], count, &st[first], cell)) {
+        for (int j = 0; j < count; ++j) place(first + j, cell[j]);
+        continue;
       }
+      for (int p = first; p < first + count; ++p)  // a particle outside, or a clipped stencil
+        if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], cell[0].data()))
+          place(p, cell[0]);
+        else
+          outside = std::min(outside, p);
     }
     if (outside < n) return outside;
     schedule.build(n, grid.cells(axis));

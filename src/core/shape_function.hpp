@@ -14,18 +14,29 @@ enum class ShapeKind { Linear, Gimp };
 
 inline std::string_view to_string(ShapeKind k) { return k == ShapeKind::Linear ? "linear" : "gimp"; }
 
+// floor(x) for |x| < 2^52, exactly, as a truncating conversion the compiler vectorises (it does not
+// vectorise std::floor here).
+inline double floor_small(double x) {
+  const double t = static_cast<double>(static_cast<long long>(x));
+  return t > x ? t - 1.0 : t;
+}
+
 // Tent function N(r) = 1 - |r|.
 struct LinearShape {
   static constexpr int K = 2;
   // A particle in cell c reaches nodes c + kReachLo .. c + kReachHi along each axis.
   static constexpr int kReachLo = 0, kReachHi = 1;
 
-  static int first_node(double xi, double /*l*/) { return static_cast<int>(std::floor(xi)); }
+  static int first_node(double xi, double l) { return static_cast<int>(first_node_value(xi, l)); }
+  static double first_node_value(double xi, double /*l*/) { return floor_small(xi); }
   // Valid for first <= xi <= first + 1 (the particle's cell).
-  static void eval(double xi, double /*l*/, int first, double* w, double* dw) {
-    const double r = xi - first;
-    w[0] = 1.0 - r;
-    w[1] = r;
+  static void eval(double xi, double l, int first, double* w, double* dw) { eval_regular(xi - first, l, w, dw); }
+  // Every first node make_stencil picks gives the one formula.
+  static bool regular(double /*a0*/, double /*l*/) { return true; }
+  // With a0 = xi - first.
+  static void eval_regular(double a0, double /*l*/, double* w, double* dw) {
+    w[0] = 1.0 - a0;
+    w[1] = a0;
     dw[0] = -1.0;
     dw[1] = 1.0;
   }
@@ -72,19 +83,28 @@ struct GimpShape {
   }
 
   // Support is |xi - node| < 1 + l; with l <= 1/2 it holds at most 3 nodes.
-  static int first_node(double xi, double l) { return static_cast<int>(std::floor(xi - 1.0 - l)) + 1; }
+  static int first_node(double xi, double l) { return static_cast<int>(first_node_value(xi, l)); }
+  // The same as a double (for loops that keep every value a double, so that they vectorise), for
+  // |xi| < 2^52.
+  static double first_node_value(double xi, double l) { return floor_small(xi - 1.0 - l) + 1.0; }
   // With the first node at distance a0 = xi - first in [l, 1 + l) (always, but where a grid without
   // ghost layers clips the stencil), each node's pieces join into one branch-free formula: the
   // first node's linear piece plus e^2 / 4l past 1 - l (its tail), the second's linear piece less
   // q^2 / 2l within l of it (its centre), the third's tail. Choosing the piece by comparisons
   // mispredicted where particles lie at random in their cells: the stencil pass ran 11 % slower.
   static void eval(double xi, double l, int first, double* w, double* dw) {
-    const double inv_2l = 0.5 / l;
     const double a0 = xi - first;
-    if (!(a0 >= l && a0 < 1.0 + l)) {  // clipped: piece by piece
+    if (!regular(a0, l)) {  // clipped: piece by piece
+      const double inv_2l = 0.5 / l;
       for (int k = 0; k < K; ++k) piece(xi - (first + k), l, inv_2l, w[k], dw[k]);
       return;
     }
+    eval_regular(a0, l, w, dw);
+  }
+  // True where the first node lies at a0 = xi - first in [l, 1 + l): eval_regular's range.
+  static bool regular(double a0, double l) { return (a0 >= l) & (a0 < 1.0 + l); }
+  static void eval_regular(double a0, double l, double* w, double* dw) {
+    const double inv_2l = 0.5 / l;
     const double inv_4l = 0.5 * inv_2l;
     const double e = positive_part(a0 - (1.0 - l));  // how far node 0 lies into its tail
     w[0] = 1.0 - a0 + e * e * inv_4l;

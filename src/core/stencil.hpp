@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "grid.hpp"
@@ -66,6 +67,71 @@ bool make_stencil(const Grid<Dim>& grid, const Vec<Dim>& x, double l, Stencil<Di
       st.dw[d][k] = dw[k] * inv_h;
     }
     st.base += first * grid.stride(d);
+  }
+  return true;
+}
+
+// What make_stencils reads of the grid, taken once: read through the grid inside the loop, every
+// store of a stencil could have changed them, and each was loaded again per particle.
+template <int Dim>
+struct StencilFrame {
+  explicit StencilFrame(const Grid<Dim>& grid) : inv_h(1.0 / grid.cell()) {
+    for (int d = 0; d < Dim; ++d) origin[d] = grid.origin()[d], cells[d] = grid.cells(d), stride[d] = grid.stride(d);
+  }
+  double origin[Dim];
+  double inv_h;
+  int cells[Dim], stride[Dim];
+};
+
+constexpr int kStencilBlock = 32;  // particles per make_stencils call
+
+// make_stencil for `count` (at most kStencilBlock) particles together, with the same values, and
+// each particle's cell coordinates (Dim ints, clamped to the grid) in `cell`. Each axis's arithmetic
+// runs over the block lane by lane, which the compiler vectorises (particle by particle it ran as
+// scalar code: the sand column's stencil stage took 0.32 instead of 0.26 ms a step); the stencils are
+// written out after. Returns false, having written no stencil, where a particle's centre is outside
+// the grid or its stencil is clipped: the caller then makes that block one particle at a time.
+template <class Shape, int Dim, class CellCoords>
+bool make_stencils(const StencilFrame<Dim>& f, const Vec<Dim>* x, const double* l, int count,
+                   Stencil<Dim, Shape::K>* st, CellCoords* cell) {
+  constexpr int B = kStencilBlock, K = Shape::K;
+  // Every value a double, the node and cell numbers too: with ints beside them the vectoriser found
+  // no vector type for the loop.
+  alignas(64) double w[Dim][K][B], dw[Dim][K][B], first[Dim][B], at[Dim][B];
+  assert(count <= B);
+  double bad = 0.0;
+  for (int d = 0; d < Dim; ++d) {
+    const double origin = f.origin[d], inv_h = f.inv_h, top = f.cells[d];
+    const double last_first = f.cells[d] + 1 - K, last_cell = f.cells[d] - 1;
+    alignas(64) double coordinate[B], width[B];  // copied first: the vectoriser loads no member in place
+    for (int j = 0; j < count; ++j) coordinate[j] = x[j][d], width[j] = l[j];
+    for (int j = 0; j < count; ++j) {
+      const double xi = (coordinate[j] - origin) * inv_h;
+      // Held within [-1, cells + 1] (a NaN at -1), so that the integer values below stay small; such
+      // a particle is flagged, and its block made again one by one.
+      const double xs = std::min(xi >= -1.0 ? xi : -1.0, top + 1.0);
+      const double lj = width[j];
+      const double fn = std::min(std::max(Shape::first_node_value(xs, lj), 0.0), last_first);
+      const double a0 = xs - fn;
+      // Bitwise, not short-circuit: a branch in the loop keeps it from being vectorised.
+      const bool inside = (xi >= 0.0) & (xi <= top);
+      bad += (inside & Shape::regular(a0, lj)) ? 0.0 : 1.0;
+      at[d][j] = std::min(floor_small(xs), last_cell);
+      first[d][j] = fn;
+      double wk[K], dwk[K];
+      Shape::eval_regular(a0, lj, wk, dwk);
+      for (int k = 0; k < K; ++k) w[d][k][j] = wk[k], dw[d][k][j] = dwk[k] * inv_h;
+    }
+  }
+  if (bad > 0.0) return false;
+  for (int j = 0; j < count; ++j) {
+    Stencil<Dim, K>& s = st[j];
+    s.base = 0;
+    for (int d = 0; d < Dim; ++d) {
+      for (int k = 0; k < K; ++k) s.w[d][k] = w[d][k][j], s.dw[d][k] = dw[d][k][j];
+      s.base += static_cast<int>(first[d][j]) * f.stride[d];
+      cell[j][d] = static_cast<int>(at[d][j]);
+    }
   }
   return true;
 }

@@ -1,7 +1,10 @@
 // Shape functions: partition of unity, gradients summing to zero, linear reproduction,
 // uGIMP values against the closed form and its limit l -> 0 (the tent).
+#include <array>
 #include <catch2/catch.hpp>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include "core/grid.hpp"
 #include "core/stencil.hpp"
@@ -125,4 +128,61 @@ TEST_CASE("a stencil is refused outside the grid and clipped at its edge", "[cor
   CHECK_FALSE(make_stencil<GimpShape>(grid, Vec<2>(0.5, -1e-9), 0.25, g));
   CHECK(inside_domain(grid, Vec<2>(0.0, 1.0)));
   CHECK_FALSE(inside_domain(grid, Vec<2>(0.5, 1.0 + 1e-12)));
+}
+
+namespace {
+
+// Blocks of particles inside (clear of the edges), or some on node lines and grid edges, at a
+// clipped uGIMP edge, or outside.
+template <class Shape, int Dim>
+void check_block_matches_particles() {
+  const Grid<Dim> grid(Vec<Dim>::Zero(), Vec<Dim>::Constant(1.0), 0.1);  // no ghost layer: clipping happens
+  const StencilFrame<Dim> frame(grid);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double special[] = {0.0, 0.1, 0.5, 0.95, 1.0, 0.0125, 0.9875};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  int blocks_made = 0, blocks_refused = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int count = 1 + trial % kStencilBlock;
+    std::vector<Vec<Dim>> x(count);
+    std::vector<double> l(count);
+    for (int j = 0; j < count; ++j) {
+      for (int d = 0; d < Dim; ++d) x[j][d] = trial % 3 == 0 ? special[(j + d * trial) % 7] : 0.15 + 0.7 * u(rng);
+      l[j] = j % 2 ? 0.25 : 1.0 / 6.0;
+    }
+    if (trial % 10 == 5) x[count / 2][0] = trial % 20 == 5 ? nan : 1.0 + 1e-9;  // outside: refused
+    std::vector<Stencil<Dim, Shape::K>> block(count), one(count);
+    std::vector<std::array<int, Dim>> cells(count), cell_one(count);
+    bool all = true;
+    for (int j = 0; j < count; ++j) all &= make_stencil<Shape>(grid, x[j], l[j], one[j], cell_one[j].data());
+    const bool regular = make_stencils<Shape>(frame, x.data(), l.data(), count, block.data(), cells.data());
+    if (!all) REQUIRE_FALSE(regular);  // never a stencil for a particle outside
+    if (!regular) {
+      ++blocks_refused;
+      continue;
+    }
+    ++blocks_made;
+    for (int j = 0; j < count; ++j) {
+      CAPTURE(trial, j, x[j].transpose(), l[j]);
+      CHECK(block[j].base == one[j].base);
+      for (int d = 0; d < Dim; ++d) {
+        CHECK(cells[j][d] == cell_one[j][d]);
+        for (int k = 0; k < Shape::K; ++k) {
+          CHECK(block[j].w[d][k] == one[j].w[d][k]);  // bit for bit
+          CHECK(block[j].dw[d][k] == one[j].dw[d][k]);
+        }
+      }
+    }
+  }
+  CHECK(blocks_made > 100);
+  CHECK(blocks_refused >= 20);
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE_SIG("stencils made a block at a time equal those made one by one", "[core][shape]",
+                       ((class Shape, int Dim), Shape, Dim), (LinearShape, 2), (GimpShape, 2), (LinearShape, 3),
+                       (GimpShape, 3)) {
+  check_block_matches_particles<Shape, Dim>();
 }
