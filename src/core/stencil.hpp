@@ -99,7 +99,9 @@ bool make_stencils(const StencilFrame<Dim>& f, const Vec<Dim>* x, const double* 
   // no vector type for the loop.
   alignas(64) double w[Dim][K][B], dw[Dim][K][B], first[Dim][B], at[Dim][B];
   assert(count <= B);
-  double bad = 0.0;
+  // Flags of 64 bits, as wide as the doubles, joined by OR: the vectoriser reduces that lane-wise (a
+  // sum of doubles it must add in order, one lane at a time).
+  long long bad = 0;
   for (int d = 0; d < Dim; ++d) {
     const double origin = f.origin[d], inv_h = f.inv_h, top = f.cells[d];
     const double last_first = f.cells[d] + 1 - K, last_cell = f.cells[d] - 1;
@@ -115,7 +117,7 @@ bool make_stencils(const StencilFrame<Dim>& f, const Vec<Dim>* x, const double* 
       const double a0 = xs - fn;
       // Bitwise, not short-circuit: a branch in the loop keeps it from being vectorised.
       const bool inside = (xi >= 0.0) & (xi <= top);
-      bad += (inside & Shape::regular(a0, lj)) ? 0.0 : 1.0;
+      bad |= static_cast<long long>(!(inside & Shape::regular(a0, lj)));
       at[d][j] = std::min(floor_small(xs), last_cell);
       first[d][j] = fn;
       double wk[K], dwk[K];
@@ -123,7 +125,7 @@ bool make_stencils(const StencilFrame<Dim>& f, const Vec<Dim>* x, const double* 
       for (int k = 0; k < K; ++k) w[d][k][j] = wk[k], dw[d][k][j] = dwk[k] * inv_h;
     }
   }
-  if (bad > 0.0) return false;
+  if (bad) return false;
   for (int j = 0; j < count; ++j) {
     Stencil<Dim, K>& s = st[j];
     s.base = 0;
