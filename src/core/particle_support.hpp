@@ -46,11 +46,13 @@ class ParticleSupport {
         for (int j = 0; j < count; ++j) place(first + j, cell[j]);
         continue;
       }
-      for (int p = first; p < first + count; ++p)  // a particle outside, or a clipped stencil
-        if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], cell[0].data()))
-          place(p, cell[0]);
+      for (int p = first; p < first + count; ++p) {  // a particle outside, or a clipped stencil
+        std::array<int, Dim> one;
+        if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], one.data()))
+          place(p, one);
         else
           outside = std::min(outside, p);
+      }
     }
     if (outside < n) return outside;
     schedule.build(n, grid.cells(axis));

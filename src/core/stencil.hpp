@@ -102,11 +102,12 @@ bool make_stencils(const StencilFrame<Dim>& f, const Vec<Dim>* x, const double* 
   // Flags of 64 bits, as wide as the doubles, joined by OR: the vectoriser reduces that lane-wise (a
   // sum of doubles it must add in order, one lane at a time).
   long long bad = 0;
+  alignas(64) double coordinate[B], width[B];  // copied first: the vectoriser loads no member in place
+  for (int j = 0; j < count; ++j) width[j] = l[j];
   for (int d = 0; d < Dim; ++d) {
     const double origin = f.origin[d], inv_h = f.inv_h, top = f.cells[d];
     const double last_first = f.cells[d] + 1 - K, last_cell = f.cells[d] - 1;
-    alignas(64) double coordinate[B], width[B];  // copied first: the vectoriser loads no member in place
-    for (int j = 0; j < count; ++j) coordinate[j] = x[j][d], width[j] = l[j];
+    for (int j = 0; j < count; ++j) coordinate[j] = x[j][d];
     for (int j = 0; j < count; ++j) {
       const double xi = (coordinate[j] - origin) * inv_h;
       // Held within [-1, cells + 1] (a NaN at -1), so that the integer values below stay small; such
