@@ -161,6 +161,7 @@ template <int Dim>
 template <class Shape>
 void ContactFields<Dim>::mark_shared_nodes(const Particles<Dim>& particles, const Grid<Dim>& grid,
                                            const ParticleSupport<Dim>& support, const StepContext& c) {
+  find_plain_fields();
   const int full_cell = mark_cell_fields(particles, grid, support);
   shared_.clear(grid.node_count());
   int overflow = mark_nodes<Shape>(grid, support.cells);
@@ -199,12 +200,17 @@ int ContactFields<Dim>::mark_cell_fields(const Particles<Dim>& particles, const 
   }
   slab_cells_.resize(support.schedule.slabs());
   for (auto& list : slab_cells_) list.clear();
+  slab_kept_apart_.resize(support.schedule.slabs());
+  for (auto& list : slab_kept_apart_) list.clear();
   std::atomic<int> full_cell{-1};
   const auto& cell_of = support.cell_of;
   support.schedule.for_each_in_own_cell_by_slab([&](int slab, int p) {  // slabs hold disjoint cells
-    FieldSet& fs = cell_fields_[cell_of[p]];
-    if (fs[0] < 0) slab_cells_[slab].push_back(cell_of[p]);
-    if (!add_field(fs, field_of_body_[particles.body[p]])) full_cell.store(cell_of[p], std::memory_order_relaxed);
+    const int cell = cell_of[p], f = field_of_body_[particles.body[p]];
+    FieldSet& fs = cell_fields_[cell];
+    if (fs[0] < 0) slab_cells_[slab].push_back(cell);
+    if (!plain_[f] && std::all_of(fs.begin(), fs.end(), [&](int g) { return g < 0 || plain_[g]; }))
+      slab_kept_apart_[slab].push_back(cell);  // its first field kept apart from others
+    if (!add_field(fs, f)) full_cell.store(cell, std::memory_order_relaxed);
   });
   return full_cell.load();
 }
@@ -215,9 +221,17 @@ int ContactFields<Dim>::mark_cell_fields(const Particles<Dim>& particles, const 
 // marked the others with those fields already, so the marks, and the order in which nodes are first
 // marked, are those of marking every node (the slab's particles are sorted by cell, so most cells
 // follow their left neighbour).
+//
+// A plain field (flag_cells_near_kept_apart) marks only from the cells whose nodes a field kept apart
+// from others may reach: a node no such field reaches is never shared, whatever plain fields meet
+// there. Every plain cell that reaches a shared node is one of those, so each shared node gets the
+// same fields in the same order, and comes first in the same place, as when every cell marks; only
+// nodes that can never be shared go unmarked (most of a slope in a rigid box: its nodes cost a mark,
+// a clear and a look in build every step).
 template <int Dim>
 template <class Shape>
 int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
+  const bool some_plain = flag_cells_near_kept_apart<Shape>(grid, cells);
   const int slabs = static_cast<int>(slab_cells_.size());
   slab_nodes_.resize(slabs);
   for (auto& list : slab_nodes_) list.clear();  // also of slabs without cells now, which no thread visits
@@ -231,24 +245,29 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
       auto& touched = slab_nodes_[sl];
       std::array<int, Dim> last{};
       const FieldSet* last_fields = nullptr;
+      bool last_near = false;
       for (const int c : slab_cells_[sl]) {
         const FieldSet& fs = cell_fields_[c];
         const auto coords = cells.coords(c);
         bool follows = last_fields && *last_fields == fs && coords[0] == last[0] + 1;
         for (int d = 1; d < Dim; ++d) follows = follows && coords[d] == last[d];
+        const bool near = !some_plain || near_kept_apart_[c];
         last = coords;
         last_fields = &fs;
         for (const int f : fs) {
           if (f < 0) break;
+          const bool plain = some_plain && plain_[f];
+          if (plain && !near) continue;
           const bool rigid = rules_.rigid(f);
           std::array<int, Dim> lo, hi;
           lo.fill(rigid ? 0 : Shape::kReachLo);
           hi.fill(rigid ? 1 : Shape::kReachHi);
-          if (follows) lo[0] = hi[0];
+          if (follows && (!plain || last_near)) lo[0] = hi[0];  // the neighbour marked the rest
           for_each_node_in<Dim>(grid, coords, lo, hi, [&](int i, const std::array<int, Dim>&) {
             if (!shared_.mark(i, f, touched)) overflow.store(i, std::memory_order_relaxed);
           });
         }
+        last_near = near;
       }
     });
 #pragma omp barrier
@@ -256,6 +275,70 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
   auto& all = shared_.touched();
   for (const auto& list : slab_nodes_) all.insert(all.end(), list.begin(), list.end());
   return overflow.load();
+}
+
+// Plain fields: deformable ones glued to every other deformable field (no contact pair between
+// them, or one glued), such as the soil in a rigid box. Only where a field that is kept apart from
+// others (rigid, or in a contact pair with another deformable field that is not glued) also reaches
+// can their nodes be shared.
+template <int Dim>
+void ContactFields<Dim>::find_plain_fields() {
+  const int fields = rules_.fields();
+  plain_.assign(fields, 1);
+  for (int f = 0; f < fields; ++f)
+    if (rules_.rigid(f)) plain_[f] = 0;
+  for (const auto& c : pairs_) {
+    const int a = field_of_body_[c.a], b = field_of_body_[c.b];
+    if (!rules_.rigid(a) && !rules_.rigid(b) && !rules_.glued(a, b)) plain_[a] = plain_[b] = 0;
+  }
+}
+
+// Flags the cells from which a plain field's nodes (Shape's reach) meet those of a field kept apart
+// (a rigid field: its own cell's nodes); returns false, flagging nothing, where no field is plain or
+// the kept-apart fields fill more than a quarter of the occupied cells (deformable bodies in contact
+// pairs): flagging around each of their cells would cost more than the marks it saves. Serial: the
+// kept-apart fields are mostly rigid walls and bases, a few cells.
+template <int Dim>
+template <class Shape>
+bool ContactFields<Dim>::flag_cells_near_kept_apart(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
+  if (static_cast<int>(near_kept_apart_.size()) != grid.cell_count())
+    near_kept_apart_.assign(grid.cell_count(), 0);
+  else
+    for (const int c : near_kept_apart_cells_) near_kept_apart_[c] = 0;
+  near_kept_apart_cells_.clear();
+  if (std::none_of(plain_.begin(), plain_.end(), [](char p) { return p; })) return false;
+  std::size_t occupied = 0, kept_apart = 0;
+  for (std::size_t s = 0; s < slab_cells_.size(); ++s)
+    occupied += slab_cells_[s].size(), kept_apart += slab_kept_apart_[s].size();
+  if (kept_apart * 4 > occupied) return false;
+  for (const auto& list : slab_kept_apart_)
+    for (const int c : list) {
+      bool rigid = true;  // reaching only its own cell's nodes: every kept-apart field of the cell rigid
+      for (const int f : cell_fields_[c]) {
+        if (f < 0) break;
+        if (!plain_[f]) rigid = rigid && rules_.rigid(f);
+      }
+      // A plain cell c' reaches nodes c' + kReachLo .. c' + kReachHi, this one c + lo .. c + hi: they
+      // meet for c' in c + lo - kReachHi .. c + hi - kReachLo.
+      const auto x = cells.coords(c);
+      std::array<int, Dim> from, to;
+      bool empty = false;
+      for (int d = 0; d < Dim; ++d) {
+        from[d] = std::max(x[d] + (rigid ? 0 : Shape::kReachLo) - Shape::kReachHi, 0);
+        to[d] = std::min(x[d] + (rigid ? 1 : Shape::kReachHi) - Shape::kReachLo, grid.cells(d) - 1);
+        empty = empty || to[d] < from[d];
+      }
+      if (empty) continue;
+      std::array<int, Dim> y = from;
+      for (;;) {
+        const int near = cells.of_coords(y);
+        if (!near_kept_apart_[near]) near_kept_apart_[near] = 1, near_kept_apart_cells_.push_back(near);
+        int d = 0;
+        while (d < Dim && ++y[d] > to[d]) y[d] = from[d], ++d;
+        if (d == Dim) break;
+      }
+    }
+  return true;
 }
 
 // Cells whose deformable particles can reach a shared node: c - hi .. c - lo around it.

@@ -104,6 +104,9 @@ class ContactFields {
   int mark_cell_fields(const Particles<Dim>& particles, const Grid<Dim>& grid, const ParticleSupport<Dim>& support);
   template <class Shape>
   int mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& cells);
+  void find_plain_fields();
+  template <class Shape>
+  bool flag_cells_near_kept_apart(const Grid<Dim>& grid, const CellIndex<Dim>& cells);
   template <class Shape>
   void flag_cells_near_shared(const Grid<Dim>& grid, const CellIndex<Dim>& cells);
   NodeFields<Dim> node_fields(int k) const;
@@ -126,7 +129,11 @@ class ContactFields {
   // This step's occupied cells and newly marked nodes per scatter slab, and the cells flagged near a
   // shared node: what the next step empties instead of the whole grid.
   std::vector<std::vector<int>> slab_cells_, slab_nodes_;
+  std::vector<std::vector<int>> slab_kept_apart_;  // per slab, its cells holding a field kept apart
   std::vector<int> near_cells_;
+  std::vector<char> plain_;                 // per field: deformable, glued to every deformable field
+  std::vector<char> near_kept_apart_;       // per cell: its plain fields' nodes may be shared
+  std::vector<int> near_kept_apart_cells_;  // the cells flagged
   RigidExclusion<Dim> exclusion_;
 };
 

@@ -47,6 +47,7 @@ class SharedNodes {
   // The nodes marked this step (build() and the next clear() read them), in a fixed order: the
   // marking threads' lists concatenated slab by slab.
   std::vector<int>& touched() { return touched_; }
+  const std::vector<int>& touched() const { return touched_; }
   // Lists the nodes where fields meet that must be kept apart (a rigid field, or two fields with a
   // declared contact) and zeroes their slots. Where only glued deformable fields meet, the common
   // grid fields serve: they are one body there.

@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "contact/contact_fields.hpp"
 #include "core/error.hpp"
@@ -141,4 +143,96 @@ TEST_CASE("contact fields: a block on a rigid base shares exactly the nodes wher
   }
   CHECK(on_interface == 5);
   CHECK(S.count() == 5);
+}
+
+namespace {
+
+// The shared nodes by their definition: every node that some particle's field reaches (uGIMP: its cell
+// c, nodes c - 1 .. c + 2; a rigid particle: its cell's nodes) where two or more fields meet and one of
+// them is rigid or a pair of them is not glued. Node -> its fields, from the positions at the start of
+// the step.
+std::map<int, std::set<int>> shared_by_definition(const Model<2>& m, const std::vector<Vec<2>>& x,
+                                                  const std::vector<std::uint16_t>& body) {
+  const auto& g = m.grid();
+  const auto& c = m.contact();
+  std::map<int, std::set<int>> reached;
+  for (std::size_t p = 0; p < x.size(); ++p) {
+    const int f = c.field_of(body[p]);
+    const bool rigid = c.rigid(body[p]);
+    int cell[2];
+    for (int d = 0; d < 2; ++d) cell[d] = static_cast<int>(std::floor((x[p][d] - g.origin()[d]) / g.cell()));
+    const int lo = rigid ? 0 : GimpShape::kReachLo, hi = rigid ? 1 : GimpShape::kReachHi;
+    for (int i = lo; i <= hi; ++i)
+      for (int j = lo; j <= hi; ++j) reached[(cell[0] + i) * g.stride(0) + (cell[1] + j) * g.stride(1)].insert(f);
+  }
+  std::map<int, std::set<int>> shared;
+  for (const auto& [node, fields] : reached) {
+    bool apart = false;
+    for (const int a : fields)
+      for (const int b : fields) apart = apart || c.rules().rigid(a) || (a != b && !c.rules().glued(a, b));
+    if (fields.size() > 1 && apart) shared[node] = fields;
+  }
+  return shared;
+}
+
+std::map<int, std::set<int>> shared_in_step(const Model<2>& m) {
+  const auto& S = m.contact().nodes();
+  std::map<int, std::set<int>> shared;
+  for (int k = 0; k < S.count(); ++k)
+    for (int j = 0; j < S.fields(k); ++j) shared[S.node(k)].insert(S.field_of_slot(k * SharedNodes<2>::kSlots + j));
+  return shared;
+}
+
+}  // namespace
+
+TEST_CASE("contact fields: soil that only rigid bodies are kept apart from shares the nodes of their definition",
+          "[contact][rigid]") {
+  // Two soil layers, each in contact with a rigid box (base and walls one cell thick), glued to each
+  // other: both are plain fields, which mark nodes only near the box. Where the layers meet away from
+  // the box no node is shared; along the box every node both reach is, with every field there. The
+  // second section pairs the layers with each other as well: then they are kept apart everywhere.
+  ModelSettings<2> s;
+  s.lower = Vec<2>(-0.2, -0.2);
+  s.upper = Vec<2>(1.2, 1.0);
+  s.cell = 0.05;
+  s.shape = ShapeKind::Gimp;
+  s.gravity = Vec<2>(0, -9.81);
+  Model<2> m(s);
+  const int mat = m.add_material(std::make_shared<LinearElastic>(2000.0, 1e7, 0.3));
+  const int lower = m.add_body("lower", 2);
+  m.fill_box(lower, mat, Vec<2>(0.0, 0.0), Vec<2>(1.0, 0.25));
+  const int upper = m.add_body("upper", 2);
+  m.fill_box(upper, mat, Vec<2>(0.0, 0.25), Vec<2>(1.0, 0.5));
+  const int box = m.add_body("box", 2, true);
+  m.fill_box(box, -1, Vec<2>(-0.05, -0.05), Vec<2>(1.05, 0.0));
+  m.fill_box(box, -1, Vec<2>(-0.05, 0.0), Vec<2>(0.0, 0.6));
+  m.fill_box(box, -1, Vec<2>(1.0, 0.0), Vec<2>(1.05, 0.6));
+  m.add_contact(lower, box, 0.5);
+  m.add_contact(upper, box, 0.0);
+  bool pair_layers = false;
+  SECTION("the layers glued") {}
+  SECTION("the layers in contact with each other") { pair_layers = true; }
+  if (pair_layers) m.add_contact(lower, upper, 0.3);
+  const std::vector<Vec<2>> x = m.particles().x;
+  const std::vector<std::uint16_t> body = m.particles().body;
+  m.step();
+  const auto expected = shared_by_definition(m, x, body);
+  const auto found = shared_in_step(m);
+  CHECK(found == expected);
+  // The interface between the layers, away from the walls (x = 0.35 .. 0.65 m, y = 0.25 m).
+  int interface_shared = 0;
+  for (const auto& [node, fields] : found) {
+    const Vec<2> p = m.grid().node_position(node);
+    if (std::abs(p[1] - 0.25) < 1e-9 && p[0] > 0.325 && p[0] < 0.675) ++interface_shared;
+  }
+  CHECK(interface_shared == (pair_layers ? 7 : 0));
+  CHECK(found.size() > 40);  // the box's inner faces
+  // Glued, the layers' nodes away from the box were not marked at all (the box holds under a quarter
+  // of the occupied cells); paired, every node the fields reach was (303 with the box's).
+  const std::size_t marked = m.contact().nodes().touched().size();
+  const std::size_t reached = 23 * 13;  // the layers reach x = -0.05 .. 1.05 m and y = -0.05 .. 0.55 m
+  if (pair_layers)
+    CHECK(marked >= reached);
+  else
+    CHECK(marked < reached * 3 / 4);  // 199 of 303: the nodes within 3 of the box (all 303 before)
 }
