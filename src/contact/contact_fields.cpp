@@ -181,6 +181,10 @@ void ContactFields<Dim>::mark_shared_nodes(const Particles<Dim>& particles, cons
   shared_.build(rules_);
   slot_reaction_.assign(shared_.mass.size(), Vec<Dim>::Zero());
   flag_cells_near_shared<Shape>(grid, support.cells);
+  // The particles that the step's contact scatters visit: rigid ones and those near a shared node.
+  const auto& P = particles;
+  near_particles_.select(support.schedule,
+                         [&](int p) { return body_rigid_[P.body[p]] || near_shared_[support.cell_of[p]]; });
 }
 
 // The fields of each cell's particles; returns a cell that holds more than FieldSet can, or -1.
@@ -387,7 +391,7 @@ void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, co
   const auto& G = grid;
   auto& S = shared_;
   const Vec<Dim> g = gravity;
-  support.schedule.for_each([&](int p) {
+  near_particles_.for_each([&](int p) {
     const int b = P.body[p];
     const int f = field_of_body_[b];
     if (body_rigid_[b]) {
@@ -582,7 +586,7 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
     if (s % kSlots < static_cast<std::size_t>(S.fields(static_cast<int>(s / kSlots))) &&
         !rules_.rigid(S.field_of_slot(static_cast<int>(s))))
       S.momentum[s].setZero();
-  support.schedule.for_each([&](int p) {
+  near_particles_.for_each([&](int p) {
     const int b = P.body[p];
     if (body_rigid_[b] || !near_shared_[support.cell_of[p]]) return;
     const int f = field_of_body_[b];

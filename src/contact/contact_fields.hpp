@@ -131,9 +131,10 @@ class ContactFields {
   std::vector<std::vector<int>> slab_cells_, slab_nodes_;
   std::vector<std::vector<int>> slab_kept_apart_;  // per slab, its cells holding a field kept apart
   std::vector<int> near_cells_;
-  std::vector<char> plain_;                 // per field: deformable, glued to every deformable field
-  std::vector<char> near_kept_apart_;       // per cell: its plain fields' nodes may be shared
-  std::vector<int> near_kept_apart_cells_;  // the cells flagged
+  ScatterSchedule::Selection near_particles_;  // this step's rigid particles and those near a shared node
+  std::vector<char> plain_;                    // per field: deformable, glued to every deformable field
+  std::vector<char> near_kept_apart_;          // per cell: its plain fields' nodes may be shared
+  std::vector<int> near_kept_apart_cells_;     // the cells flagged
   RigidExclusion<Dim> exclusion_;
 };
 

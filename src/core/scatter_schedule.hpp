@@ -118,6 +118,47 @@ class ScatterSchedule {
     }
   }
 
+  // Some of the particles, slab by slab in the schedule's order: for scatters that only a few particles
+  // take part in (contact's, along the faces where bodies meet), which would otherwise pass every
+  // particle through the coloured loop to find them.
+  class Selection {
+   public:
+    // The particles p of each slab, in order, for which keep(p) holds; slabs in parallel.
+    template <class Keep>
+    void select(const ScatterSchedule& schedule, Keep&& keep) {
+      const int slabs = schedule.slabs();
+      of_slab_.resize(slabs);
+#pragma omp parallel
+      schedule.for_my_slabs(0, 1, slabs, [&](int s) {
+        auto& list = of_slab_[s];
+        list.clear();
+        for (int k = schedule.begin_[s]; k < schedule.begin_[s + 1]; ++k)
+          if (keep(schedule.order_[k])) list.push_back(schedule.order_[k]);
+      });
+      // Slabs without particles now may hold the last selection's: no thread visited them.
+      for (int s = 0; s < slabs; ++s)
+        if (schedule.begin_[s] == schedule.begin_[s + 1]) of_slab_[s].clear();
+    }
+    // Calls f(p) for every selected particle, as ScatterSchedule::for_each does for all: each slab's
+    // in order, slabs of one colour at a time in parallel, so every node sums the same terms in the same
+    // order as there.
+    template <class F>
+    void for_each(F&& f) const {
+      const int slabs = static_cast<int>(of_slab_.size());
+      auto size = [&](int s) { return static_cast<long>(of_slab_[s].size()); };
+#pragma omp parallel
+      for (int colour = 0; colour < kColours; ++colour) {
+        for_my_share(colour, kColours, slabs, size, [&](int s) {
+          for (const int p : of_slab_[s]) f(p);
+        });
+#pragma omp barrier
+      }
+    }
+
+   private:
+    std::vector<std::vector<int>> of_slab_;
+  };
+
   // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
   // below `slabs`, shared by weight(s) (the work of slab s) as for_my_slabs shares them by particles.
   template <class Weight, class G>
