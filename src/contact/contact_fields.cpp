@@ -35,13 +35,30 @@ void for_each_node_in(const Grid<Dim>& grid, const std::array<int, Dim>& base, c
   }
 }
 
-// The same with offsets from..to along every axis.
-template <int Dim, class F>
-void for_each_node_around(const Grid<Dim>& grid, const std::array<int, Dim>& base, int from, int to, F&& f) {
-  std::array<int, Dim> lo, hi;
-  lo.fill(from);
-  hi.fill(to);
-  for_each_node_in<Dim>(grid, base, lo, hi, f);
+// Per-cell flags that a step sets and the next one clears: `set` lists the cells flagged. Clears the
+// last step's (all of them where the grid has another cell count).
+void reset_cell_flags(std::vector<char>& flag, std::vector<int>& set, int cell_count) {
+  if (static_cast<int>(flag.size()) != cell_count)
+    flag.assign(cell_count, 0);
+  else
+    for (const int c : set) flag[c] = 0;
+  set.clear();
+}
+
+// Flags the cells base + o, for the offsets o from..to that lie in the grid's cells.
+template <int Dim, class Cells>
+void flag_cells_in(const Grid<Dim>& grid, const Cells& cells, const std::array<int, Dim>& base,
+                   const std::array<int, Dim>& from, const std::array<int, Dim>& to, std::vector<char>& flag,
+                   std::vector<int>& set) {
+  for_each_node_in<Dim>(grid, base, from, to, [&](int, const std::array<int, Dim>& o) {
+    std::array<int, Dim> c;
+    for (int d = 0; d < Dim; ++d) {
+      c[d] = base[d] + o[d];
+      if (c[d] < 0 || c[d] >= grid.cells(d)) return;
+    }
+    const int cell = cells.of_coords(c);
+    if (!flag[cell]) flag[cell] = 1, set.push_back(cell);
+  });
 }
 
 }  // namespace
@@ -305,11 +322,7 @@ void ContactFields<Dim>::find_plain_fields() {
 template <int Dim>
 template <class Shape>
 bool ContactFields<Dim>::flag_cells_near_kept_apart(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
-  if (static_cast<int>(near_kept_apart_.size()) != grid.cell_count())
-    near_kept_apart_.assign(grid.cell_count(), 0);
-  else
-    for (const int c : near_kept_apart_cells_) near_kept_apart_[c] = 0;
-  near_kept_apart_cells_.clear();
+  reset_cell_flags(near_kept_apart_, near_kept_apart_cells_, grid.cell_count());
   if (std::none_of(plain_.begin(), plain_.end(), [](char p) { return p; })) return false;
   std::size_t occupied = 0, kept_apart = 0;
   for (std::size_t s = 0; s < slab_cells_.size(); ++s)
@@ -324,23 +337,10 @@ bool ContactFields<Dim>::flag_cells_near_kept_apart(const Grid<Dim>& grid, const
       }
       // A plain cell c' reaches nodes c' + kReachLo .. c' + kReachHi, this one c + lo .. c + hi: they
       // meet for c' in c + lo - kReachHi .. c + hi - kReachLo.
-      const auto x = cells.coords(c);
       std::array<int, Dim> from, to;
-      bool empty = false;
-      for (int d = 0; d < Dim; ++d) {
-        from[d] = std::max(x[d] + (rigid ? 0 : Shape::kReachLo) - Shape::kReachHi, 0);
-        to[d] = std::min(x[d] + (rigid ? 1 : Shape::kReachHi) - Shape::kReachLo, grid.cells(d) - 1);
-        empty = empty || to[d] < from[d];
-      }
-      if (empty) continue;
-      std::array<int, Dim> y = from;
-      for (;;) {
-        const int near = cells.of_coords(y);
-        if (!near_kept_apart_[near]) near_kept_apart_[near] = 1, near_kept_apart_cells_.push_back(near);
-        int d = 0;
-        while (d < Dim && ++y[d] > to[d]) y[d] = from[d], ++d;
-        if (d == Dim) break;
-      }
+      from.fill((rigid ? 0 : Shape::kReachLo) - Shape::kReachHi);
+      to.fill((rigid ? 1 : Shape::kReachHi) - Shape::kReachLo);
+      flag_cells_in<Dim>(grid, cells, cells.coords(c), from, to, near_kept_apart_, near_kept_apart_cells_);
     }
   return true;
 }
@@ -349,24 +349,12 @@ bool ContactFields<Dim>::flag_cells_near_kept_apart(const Grid<Dim>& grid, const
 template <int Dim>
 template <class Shape>
 void ContactFields<Dim>::flag_cells_near_shared(const Grid<Dim>& grid, const CellIndex<Dim>& cells) {
-  if (static_cast<int>(near_shared_.size()) != grid.cell_count())
-    near_shared_.assign(grid.cell_count(), 0);
-  else
-    for (const int c : near_cells_) near_shared_[c] = 0;
-  near_cells_.clear();
-  for (int k = 0; k < shared_.count(); ++k) {
-    const auto n = grid.node_coords(shared_.node(k));
-    for_each_node_around<Dim>(grid, n, -Shape::kReachHi, -Shape::kReachLo, [&](int, const std::array<int, Dim>& o) {
-      std::array<int, Dim> c;
-      for (int d = 0; d < Dim; ++d) {
-        c[d] = n[d] + o[d];
-        if (c[d] < 0 || c[d] >= grid.cells(d)) return;
-      }
-      const int cell = cells.of_coords(c);
-      if (!near_shared_[cell]) near_cells_.push_back(cell);
-      near_shared_[cell] = 1;
-    });
-  }
+  reset_cell_flags(near_shared_, near_cells_, grid.cell_count());
+  std::array<int, Dim> from, to;
+  from.fill(-Shape::kReachHi);
+  to.fill(-Shape::kReachLo);
+  for (int k = 0; k < shared_.count(); ++k)
+    flag_cells_in<Dim>(grid, cells, grid.node_coords(shared_.node(k)), from, to, near_shared_, near_cells_);
 }
 
 template <int Dim>
@@ -414,7 +402,6 @@ void ContactFields<Dim>::particles_to_fields(const Particles<Dim>& particles, co
       });
       return;
     }
-    if (!near_shared_[support.cell_of[p]]) return;
     const double m = P.mass[p];
     const Vec<Dim> mv = m * P.v[p];
     const ParticleForceTerms<Dim> t = particle_force_terms(P, damped, g, p);  // with Rayleigh damping's
@@ -588,7 +575,7 @@ void ContactFields<Dim>::remap_momentum(const Particles<Dim>& particles, const G
       S.momentum[s].setZero();
   near_particles_.for_each([&](int p) {
     const int b = P.body[p];
-    if (body_rigid_[b] || !near_shared_[support.cell_of[p]]) return;
+    if (body_rigid_[b]) return;  // the selection holds only these and particles near a shared node
     const int f = field_of_body_[b];
     const Vec<Dim> mv = P.mass[p] * P.v[p];
     const Mat<Dim> mC = apic ? Mat<Dim>(P.mass[p] * P.affine[p]) : Mat<Dim>::Zero();
