@@ -291,7 +291,9 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
         last_near = near;
       }
     });
+    if (colour + 1 < ScatterSchedule::kColours) {  // the region's end waits for the last
 #pragma omp barrier
+    }
   }
   auto& all = shared_.touched();
   for (const auto& list : slab_nodes_) all.insert(all.end(), list.begin(), list.end());

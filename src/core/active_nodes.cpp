@@ -8,49 +8,40 @@
 namespace seismpm {
 
 template <int Dim>
+void ActiveNodes<Dim>::start(const Grid<Dim>& grid, int threads) {
+  int cell_rows = 1;
+  for (int d = 1; d < Dim; ++d) cell_rows *= grid.cells(d);
+  for (int d = 0; d < Dim; ++d) cells_[d] = grid.cells(d);
+  threads_ = static_cast<std::size_t>(std::max(threads, 1));
+  cell_min_.assign(threads_ * cell_rows, INT_MAX);
+  cell_max_.assign(threads_ * cell_rows, -1);
+}
+
+template <int Dim>
 void ActiveNodes<Dim>::build(const Grid<Dim>& grid, const CellIndex<Dim>& cells, const std::vector<Vec<Dim>>& x, int lo,
                              int hi) {
+  const int threads = omp_get_max_threads();
+  start(grid, threads);
+  const int n = static_cast<int>(x.size());
+#pragma omp parallel num_threads(threads)
+  {
+    Marker m = marker(omp_get_thread_num());
+#pragma omp for schedule(static) nowait
+    for (int p = 0; p < n; ++p) m.add(cells.coords_of(x[p]));
+    m.flush();
+  }
+  finish(grid, lo, hi);
+}
+
+template <int Dim>
+void ActiveNodes<Dim>::finish(const Grid<Dim>& grid, int lo, int hi) {
   row_length_ = grid.nodes(0);
   int cell_rows = 1, node_rows = 1;
   for (int d = 1; d < Dim; ++d) cell_rows *= grid.cells(d), node_rows *= grid.nodes(d);
-  const int threads = omp_get_max_threads();
-  cell_min_.assign(static_cast<std::size_t>(threads) * cell_rows, INT_MAX);
-  cell_max_.assign(static_cast<std::size_t>(threads) * cell_rows, -1);
-  const int n = static_cast<int>(x.size());
-  // Each thread marks its own copy: the lowest and highest x cell per row of cells.
-#pragma omp parallel
-  {
-    const std::size_t t = static_cast<std::size_t>(omp_get_thread_num());
-    int* mn = cell_min_.data() + t * cell_rows;
-    int* mx = cell_max_.data() + t * cell_rows;
-    // The current row's extremes stay in registers until the row changes: particles sorted by cell
-    // come row by row, and updating the arrays per particle chained every update through memory.
-    int run_row = -1, run_min = 0, run_max = 0;
-    auto flush = [&] {
-      if (run_row < 0) return;
-      mn[run_row] = std::min(mn[run_row], run_min);
-      mx[run_row] = std::max(mx[run_row], run_max);
-    };
-#pragma omp for schedule(static) nowait
-    for (int p = 0; p < n; ++p) {
-      const auto c = cells.coords_of(x[p]);
-      int row = 0;
-      for (int d = Dim - 1; d >= 1; --d) row = row * grid.cells(d) + c[d];
-      if (row != run_row) {
-        flush();
-        run_row = row;
-        run_min = run_max = c[0];
-      } else {
-        run_min = std::min(run_min, c[0]);
-        run_max = std::max(run_max, c[0]);
-      }
-    }
-    flush();
-  }
-  for (int t = 1; t < threads; ++t)
+  for (std::size_t t = 1; t < threads_; ++t)
     for (int r = 0; r < cell_rows; ++r) {
-      cell_min_[r] = std::min(cell_min_[r], cell_min_[static_cast<std::size_t>(t) * cell_rows + r]);
-      cell_max_[r] = std::max(cell_max_[r], cell_max_[static_cast<std::size_t>(t) * cell_rows + r]);
+      cell_min_[r] = std::min(cell_min_[r], cell_min_[t * cell_rows + r]);
+      cell_max_[r] = std::max(cell_max_[r], cell_max_[t * cell_rows + r]);
     }
   // A row of nodes j is reached from the rows of cells j - hi .. j - lo (along every axis but x).
   begin_.assign(node_rows, 0);

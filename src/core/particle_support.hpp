@@ -8,6 +8,9 @@
 #include <type_traits>
 #include <vector>
 
+#include <omp.h>
+
+#include "active_nodes.hpp"
 #include "cell_index.hpp"
 #include "particles.hpp"
 #include "scatter_schedule.hpp"
@@ -21,42 +24,61 @@ class ParticleSupport {
  public:
   explicit ParticleSupport(const Grid<Dim>& grid) : cells(grid) {}
 
-  // Evaluates everything for the particles' current positions. Returns the index of the first
-  // particle outside the grid, or the particle count when all are inside.
+  // Evaluates everything for the particles' current positions, and with `active` marks the cells
+  // they occupy (ActiveNodes::start before, finish after: the caller's). Returns the index of the first
+  // particle outside the grid, or the particle count when all are inside. One parallel region: each
+  // thread makes the stencils of a contiguous chunk of blocks and counts its chunk's particles per
+  // slab, then, once every chunk is known to be inside the grid, places them in the schedule.
   template <class Shape>
-  int locate(const Grid<Dim>& grid, const Particles<Dim>& particles) {
+  int locate(const Grid<Dim>& grid, const Particles<Dim>& particles, ActiveNodes<Dim>* active = nullptr) {
     auto& st = stencils<Shape>();
     const int n = static_cast<int>(particles.size());
     st.resize(n);
     cell_of.resize(n);
     int* layer = schedule.layers(n);  // the cell index along the slab axis, for the schedule
     const int axis = cells.slab_axis();
-    int outside = n;
     const StencilFrame<Dim> frame(grid);
-    const auto place = [&](int p, const std::array<int, Dim>& cell) {
-      cell_of[p] = cells.of_coords(cell);
-      layer[p] = cell[axis];
-    };
     const int blocks = (n + kStencilBlock - 1) / kStencilBlock;
-#pragma omp parallel for schedule(static) reduction(min : outside)
-    for (int b = 0; b < blocks; ++b) {
-      const int first = b * kStencilBlock, count = std::min(kStencilBlock, n - first);
-      std::array<int, Dim> cell[kStencilBlock];
-      if (make_stencils<Shape>(frame, &particles.x[first], &particles.half_width[first], count, &st[first], cell)) {
-        for (int j = 0; j < count; ++j) place(first + j, cell[j]);
-        continue;
+    const int threads = omp_get_max_threads();
+    schedule.prepare(n, grid.cells(axis), threads);
+    first_outside_.assign(threads, n);
+#pragma omp parallel num_threads(threads)
+    {
+      const int t = omp_get_thread_num(), team = omp_get_num_threads();
+      const int first_block = static_cast<int>(static_cast<long>(blocks) * t / team);
+      const int end_block = static_cast<int>(static_cast<long>(blocks) * (t + 1) / team);
+      const int lo = std::min(first_block * kStencilBlock, n), hi = std::min(end_block * kStencilBlock, n);
+      typename ActiveNodes<Dim>::Marker marker;
+      if (active) marker = active->marker(t);
+      const auto place = [&](int p, const std::array<int, Dim>& cell) {
+        cell_of[p] = cells.of_coords(cell);
+        layer[p] = cell[axis];
+        if (active) marker.add(cell);
+      };
+      int outside = n;
+      for (int b = first_block; b < end_block; ++b) {
+        const int first = b * kStencilBlock, count = std::min(kStencilBlock, n - first);
+        std::array<int, Dim> cell[kStencilBlock];
+        if (make_stencils<Shape>(frame, &particles.x[first], &particles.half_width[first], count, &st[first], cell)) {
+          for (int j = 0; j < count; ++j) place(first + j, cell[j]);
+          continue;
+        }
+        for (int p = first; p < first + count; ++p) {  // a particle outside, or a clipped stencil
+          std::array<int, Dim> one;
+          if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], one.data()))
+            place(p, one);
+          else
+            outside = std::min(outside, p);
+        }
       }
-      for (int p = first; p < first + count; ++p) {  // a particle outside, or a clipped stencil
-        std::array<int, Dim> one;
-        if (make_stencil<Shape>(grid, particles.x[p], particles.half_width[p], st[p], one.data()))
-          place(p, one);
-        else
-          outside = std::min(outside, p);
-      }
+      if (active) marker.flush();
+      if (outside == n) schedule.count(t, lo, hi);  // an outside particle has no layer
+      first_outside_[t] = outside;
+#pragma omp barrier
+      // Every thread reads the same values, so all go on or all stop.
+      if (*std::min_element(first_outside_.begin(), first_outside_.begin() + team) == n) schedule.place(t, lo, hi);
     }
-    if (outside < n) return outside;
-    schedule.build(n, grid.cells(axis));
-    return n;
+    return *std::min_element(first_outside_.begin(), first_outside_.end());
   }
 
   template <class Shape>
@@ -73,6 +95,7 @@ class ParticleSupport {
   ScatterSchedule schedule;
 
  private:
+  std::vector<int> first_outside_;  // per thread, in locate
   // The stencils of one shape, for a const or a mutable support alike.
   template <class Shape, class Self>
   static auto& of_shape(Self& s) {

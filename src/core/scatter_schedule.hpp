@@ -27,59 +27,76 @@ class ScatterSchedule {
     return slab_of_.data();
   }
   // A stable counting sort by slab: particles of a slab in increasing index. Threads count and place
-  // contiguous chunks, which yields that same order whatever their number. Particles sorted by cell
-  // come slab by slab, so each thread keeps the current slab's count (and place) in a register until
-  // the slab changes: incremented in memory, every particle's update waited for the last one's store.
+  // contiguous chunks, which yields that same order whatever their number.
   void build(int particle_count, int cells_along_axis) {
-    const int slabs = (cells_along_axis + kSlabCells - 1) / kSlabCells;
-    order_.resize(particle_count);
-    begin_.assign(slabs + 1, 0);
+    prepare(particle_count, cells_along_axis, omp_get_max_threads());
 #pragma omp parallel
     {
       const int threads = omp_get_num_threads(), t = omp_get_thread_num();
-#pragma omp single
-      counts_.assign(static_cast<std::size_t>(threads) * slabs, 0);
       const int lo = static_cast<int>(static_cast<long>(particle_count) * t / threads);
       const int hi = static_cast<int>(static_cast<long>(particle_count) * (t + 1) / threads);
-      int* count = counts_.data() + static_cast<std::size_t>(t) * slabs;
-      int run = -1, in_run = 0;
-      for (int p = lo; p < hi; ++p) {
-        const int s = slab_of_[p] /= kSlabCells;
-        if (s != run) {
-          if (run >= 0) count[run] += in_run;
-          run = s, in_run = 0;
-        }
-        ++in_run;
-      }
-      if (run >= 0) count[run] += in_run;
+      count(t, lo, hi);
 #pragma omp barrier
-#pragma omp single
-      {
-        // Slab-major, thread-minor prefix sums: thread t's particles of slab s follow thread t-1's.
-        int running = 0;
-        for (int sl = 0; sl < slabs; ++sl) {
-          begin_[sl] = running;
-          for (int th = 0; th < threads; ++th) {
-            int& c = counts_[static_cast<std::size_t>(th) * slabs + sl];
-            const int n = c;
-            c = running;
-            running += n;
-          }
-        }
-        begin_[slabs] = running;
-      }
-      run = -1;
-      int place = 0;
-      for (int p = lo; p < hi; ++p) {
-        const int s = slab_of_[p];
-        if (s != run) {
-          if (run >= 0) count[run] = place;
-          run = s, place = count[s];
-        }
-        order_[place++] = p;
-      }
-      if (run >= 0) count[run] = place;
+      place(t, lo, hi);
     }
+  }
+  // build in parts, for a caller that fills the layers in a parallel region of its own (locate): prepare
+  // before the region; in it, each thread counts its chunk [lo, hi) (contiguous chunks in thread order
+  // that cover the particles), then after a barrier places it.
+  void prepare(int particle_count, int cells_along_axis, int max_threads) {
+    const int slabs = (cells_along_axis + kSlabCells - 1) / kSlabCells;
+    order_.resize(particle_count);
+    begin_.assign(slabs + 1, 0);
+    counts_.assign(static_cast<std::size_t>(max_threads) * slabs, 0);
+  }
+  // Particles sorted by cell come slab by slab, so each thread keeps the current slab's count (and
+  // place) in a register until the slab changes: incremented in memory, every particle's update waited
+  // for the last one's store.
+  void count(int t, int lo, int hi) {
+    const int slabs = this->slabs();
+    int* count = counts_.data() + static_cast<std::size_t>(t) * slabs;
+    int run = -1, in_run = 0;
+    for (int p = lo; p < hi; ++p) {
+      const int s = slab_of_[p] /= kSlabCells;
+      if (s != run) {
+        if (run >= 0) count[run] += in_run;
+        run = s, in_run = 0;
+      }
+      ++in_run;
+    }
+    if (run >= 0) count[run] += in_run;
+  }
+  // Inside the parallel region, after every thread's count: one thread sums the counts (an implicit
+  // barrier follows), then each places its chunk.
+  void place(int t, int lo, int hi) {
+    const int slabs = this->slabs();
+#pragma omp single
+    {
+      // Slab-major, thread-minor prefix sums: thread t's particles of slab s follow thread t-1's.
+      const int threads = omp_get_num_threads();
+      int running = 0;
+      for (int sl = 0; sl < slabs; ++sl) {
+        begin_[sl] = running;
+        for (int th = 0; th < threads; ++th) {
+          int& c = counts_[static_cast<std::size_t>(th) * slabs + sl];
+          const int n = c;
+          c = running;
+          running += n;
+        }
+      }
+      begin_[slabs] = running;
+    }
+    int* count = counts_.data() + static_cast<std::size_t>(t) * slabs;
+    int run = -1, place = 0;
+    for (int p = lo; p < hi; ++p) {
+      const int s = slab_of_[p];
+      if (s != run) {
+        if (run >= 0) count[run] = place;
+        run = s, place = count[s];
+      }
+      order_[place++] = p;
+    }
+    if (run >= 0) count[run] = place;
   }
 
   // Calls g(s, first, last) for every slab s with its particles [first, last) in order, slabs in
@@ -114,7 +131,9 @@ class ScatterSchedule {
       for_my_slabs(colour, kColours, slabs, [&](int s) {
         for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
       });
+      if (colour + 1 < kColours) {  // the region's end waits for the last
 #pragma omp barrier
+      }
     }
   }
 
@@ -151,7 +170,9 @@ class ScatterSchedule {
         for_my_share(colour, kColours, slabs, size, [&](int s) {
           for (const int p : of_slab_[s]) f(p);
         });
+        if (colour + 1 < kColours) {  // the region's end waits for the last
 #pragma omp barrier
+        }
       }
     }
 
