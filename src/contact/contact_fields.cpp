@@ -260,41 +260,35 @@ int ContactFields<Dim>::mark_nodes(const Grid<Dim>& grid, const CellIndex<Dim>& 
   // Each thread a contiguous run of a colour's slabs, shared by their cells (handed out one by one,
   // the slabs went to the threads in no order and two threads gained little over one).
   auto cells_of = [&](int sl) { return static_cast<long>(slab_cells_[sl].size()); };
-#pragma omp parallel
-  for (int colour = 0; colour < ScatterSchedule::kColours; ++colour) {
-    ScatterSchedule::for_my_share(colour, ScatterSchedule::kColours, slabs, cells_of, [&](int sl) {
-      auto& touched = slab_nodes_[sl];
-      std::array<int, Dim> last{};
-      const FieldSet* last_fields = nullptr;
-      bool last_near = false;
-      for (const int c : slab_cells_[sl]) {
-        const FieldSet& fs = cell_fields_[c];
-        const auto coords = cells.coords(c);
-        bool follows = last_fields && *last_fields == fs && coords[0] == last[0] + 1;
-        for (int d = 1; d < Dim; ++d) follows = follows && coords[d] == last[d];
-        const bool near = !some_plain || near_kept_apart_[c];
-        last = coords;
-        last_fields = &fs;
-        for (const int f : fs) {
-          if (f < 0) break;
-          const bool plain = some_plain && plain_[f];
-          if (plain && !near) continue;
-          const bool rigid = rules_.rigid(f);
-          std::array<int, Dim> lo, hi;
-          lo.fill(rigid ? 0 : Shape::kReachLo);
-          hi.fill(rigid ? 1 : Shape::kReachHi);
-          if (follows && (!plain || last_near)) lo[0] = hi[0];  // the neighbour marked the rest
-          for_each_node_in<Dim>(grid, coords, lo, hi, [&](int i, const std::array<int, Dim>&) {
-            if (!shared_.mark(i, f, touched)) overflow.store(i, std::memory_order_relaxed);
-          });
-        }
-        last_near = near;
+  ScatterSchedule::by_colour(slabs, cells_of, [&](int sl) {
+    auto& touched = slab_nodes_[sl];
+    std::array<int, Dim> last{};
+    const FieldSet* last_fields = nullptr;
+    bool last_near = false;
+    for (const int c : slab_cells_[sl]) {
+      const FieldSet& fs = cell_fields_[c];
+      const auto coords = cells.coords(c);
+      bool follows = last_fields && *last_fields == fs && coords[0] == last[0] + 1;
+      for (int d = 1; d < Dim; ++d) follows = follows && coords[d] == last[d];
+      const bool near = !some_plain || near_kept_apart_[c];
+      last = coords;
+      last_fields = &fs;
+      for (const int f : fs) {
+        if (f < 0) break;
+        const bool plain = some_plain && plain_[f];
+        if (plain && !near) continue;
+        const bool rigid = rules_.rigid(f);
+        std::array<int, Dim> lo, hi;
+        lo.fill(rigid ? 0 : Shape::kReachLo);
+        hi.fill(rigid ? 1 : Shape::kReachHi);
+        if (follows && (!plain || last_near)) lo[0] = hi[0];  // the neighbour marked the rest
+        for_each_node_in<Dim>(grid, coords, lo, hi, [&](int i, const std::array<int, Dim>&) {
+          if (!shared_.mark(i, f, touched)) overflow.store(i, std::memory_order_relaxed);
+        });
       }
-    });
-    if (colour + 1 < ScatterSchedule::kColours) {  // the region's end waits for the last
-#pragma omp barrier
+      last_near = near;
     }
-  }
+  });
   auto& all = shared_.touched();
   for (const auto& list : slab_nodes_) all.insert(all.end(), list.begin(), list.end());
   return overflow.load();

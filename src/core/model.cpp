@@ -5,8 +5,6 @@
 #include <sstream>
 #include <type_traits>
 
-#include <omp.h>
-
 #include "diagnostics.hpp"
 #include "error.hpp"
 #include "format.hpp"
@@ -405,11 +403,10 @@ void Model<Dim>::reset_grid(bool limited) {
 template <int Dim>
 template <class Shape>
 void Model<Dim>::locate_particles(bool limited) {
-  if (limited) active_.start(grid_, omp_get_max_threads());  // locate marks the occupied cells
   const int outside = support_.template locate<Shape>(grid_, particles_, limited ? &active_ : nullptr);
   if (outside < static_cast<int>(particles_.size())) fail(outside, "is outside the grid");
   if (limited) {
-    active_.finish(grid_, Shape::kReachLo, Shape::kReachHi);
+    active_.finish(grid_, Shape::kReachLo, Shape::kReachHi);  // locate marked the occupied cells
   } else {
     active_.cover(grid_);
   }

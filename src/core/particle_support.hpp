@@ -25,7 +25,7 @@ class ParticleSupport {
   explicit ParticleSupport(const Grid<Dim>& grid) : cells(grid) {}
 
   // Evaluates everything for the particles' current positions, and with `active` marks the cells
-  // they occupy (ActiveNodes::start before, finish after: the caller's). Returns the index of the first
+  // they occupy (the caller finishes the spans: ActiveNodes::finish). Returns the index of the first
   // particle outside the grid, or the particle count when all are inside. One parallel region: each
   // thread makes the stencils of a contiguous chunk of blocks and counts its chunk's particles per
   // slab, then, once every chunk is known to be inside the grid, places them in the schedule.
@@ -42,6 +42,7 @@ class ParticleSupport {
     const int threads = omp_get_max_threads();
     schedule.prepare(n, grid.cells(axis), threads);
     first_outside_.assign(threads, n);
+    if (active) active->start(grid, threads);
 #pragma omp parallel num_threads(threads)
     {
       const int t = omp_get_thread_num(), team = omp_get_num_threads();

@@ -54,17 +54,17 @@ class ScatterSchedule {
   // for the last one's store.
   void count(int t, int lo, int hi) {
     const int slabs = this->slabs();
-    int* count = counts_.data() + static_cast<std::size_t>(t) * slabs;
+    int* of_slab = counts_.data() + static_cast<std::size_t>(t) * slabs;
     int run = -1, in_run = 0;
     for (int p = lo; p < hi; ++p) {
       const int s = slab_of_[p] /= kSlabCells;
       if (s != run) {
-        if (run >= 0) count[run] += in_run;
+        if (run >= 0) of_slab[run] += in_run;
         run = s, in_run = 0;
       }
       ++in_run;
     }
-    if (run >= 0) count[run] += in_run;
+    if (run >= 0) of_slab[run] += in_run;
   }
   // Inside the parallel region, after every thread's count: one thread sums the counts (an implicit
   // barrier follows), then each places its chunk.
@@ -86,17 +86,17 @@ class ScatterSchedule {
       }
       begin_[slabs] = running;
     }
-    int* count = counts_.data() + static_cast<std::size_t>(t) * slabs;
-    int run = -1, place = 0;
+    int* next_of_slab = counts_.data() + static_cast<std::size_t>(t) * slabs;
+    int run = -1, next = 0;
     for (int p = lo; p < hi; ++p) {
       const int s = slab_of_[p];
       if (s != run) {
-        if (run >= 0) count[run] = place;
-        run = s, place = count[s];
+        if (run >= 0) next_of_slab[run] = next;
+        run = s, next = next_of_slab[s];
       }
-      order_[place++] = p;
+      order_[next++] = p;
     }
-    if (run >= 0) count[run] = place;
+    if (run >= 0) next_of_slab[run] = next;
   }
 
   // Calls g(s, first, last) for every slab s with its particles [first, last) in order, slabs in
@@ -126,15 +126,11 @@ class ScatterSchedule {
   template <class F>
   void for_each(F&& f) const {
     const int slabs = static_cast<int>(begin_.size()) - 1;
-#pragma omp parallel
-    for (int colour = 0; colour < kColours; ++colour) {
-      for_my_slabs(colour, kColours, slabs, [&](int s) {
-        for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
-      });
-      if (colour + 1 < kColours) {  // the region's end waits for the last
-#pragma omp barrier
-      }
-    }
+    by_colour(
+        slabs, [&](int s) { return long{begin_[s + 1] - begin_[s]}; },
+        [&](int s) {
+          for (int k = begin_[s]; k < begin_[s + 1]; ++k) f(order_[k]);
+        });
   }
 
   // Some of the particles, slab by slab in the schedule's order: for scatters that only a few particles
@@ -164,21 +160,30 @@ class ScatterSchedule {
     template <class F>
     void for_each(F&& f) const {
       const int slabs = static_cast<int>(of_slab_.size());
-      auto size = [&](int s) { return static_cast<long>(of_slab_[s].size()); };
-#pragma omp parallel
-      for (int colour = 0; colour < kColours; ++colour) {
-        for_my_share(colour, kColours, slabs, size, [&](int s) {
-          for (const int p : of_slab_[s]) f(p);
-        });
-        if (colour + 1 < kColours) {  // the region's end waits for the last
-#pragma omp barrier
-        }
-      }
+      by_colour(
+          slabs, [&](int s) { return static_cast<long>(of_slab_[s].size()); },
+          [&](int s) {
+            for (const int p : of_slab_[s]) f(p);
+          });
     }
 
    private:
     std::vector<std::vector<int>> of_slab_;
   };
+
+  // Calls g(s) for every slab s with weight(s) > 0, in one parallel region: slabs of one colour at a
+  // time, shared among the threads by weight (for_my_share), with a barrier between colours (the
+  // region's end waits for the last). Slabs of one colour never reach the same node.
+  template <class Weight, class G>
+  static void by_colour(int slabs, Weight&& weight, G&& g) {
+#pragma omp parallel
+    for (int colour = 0; colour < kColours; ++colour) {
+      for_my_share(colour, kColours, slabs, weight, g);
+      if (colour + 1 < kColours) {
+#pragma omp barrier
+      }
+    }
+  }
 
   // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
   // below `slabs`, shared by weight(s) (the work of slab s) as for_my_slabs shares them by particles.
