@@ -1,5 +1,7 @@
 #include "model.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -9,6 +11,7 @@
 #include "error.hpp"
 #include "format.hpp"
 #include "memory_estimate.hpp"
+#include "thread_shares.hpp"
 
 namespace seismpm {
 
@@ -302,6 +305,7 @@ void Model<Dim>::begin_phase(bool rigid_bodies_move) {
 template <int Dim>
 void Model<Dim>::step(double dt_max) {
   if (particles_.size() == 0) throw InputError("model: no particles to step");
+  ThreadShares::prepare_all(omp_get_max_threads());
   const bool contact = contact_.prepare(bodies_);  // bodies or pairs may have changed
   const bool linear = settings_.shape == ShapeKind::Linear;
   if (linear)
@@ -430,6 +434,7 @@ void Model<Dim>::finish_step(const StepContext& c) {
   ++steps_;
   for (auto& f : fixes_) f->after_step(*this, c);
   check_particles();
+  ThreadShares::update_all();
   if (steps_ % settings_.sort_every == 0) sort_particles();
 }
 

@@ -5,6 +5,7 @@
 #include "error.hpp"
 #include "format.hpp"
 #include "model.hpp"
+#include "thread_shares.hpp"
 
 namespace seismpm {
 
@@ -29,14 +30,20 @@ void Model<Dim>::check_particles() const {
   // One pass: the first invalid particle, and the first one outside (a non-finite one is reported first).
   int bad = n, outside = n;
   const DomainBox<Dim> domain(grid_);
-#pragma omp parallel for schedule(static) reduction(min : bad, outside)
-  for (int p = 0; p < n; ++p) {
-    // Without branches: 0 * a is 0 for every finite a and NaN for an infinite or NaN one, so the sum
-    // of the zeros is 0 exactly when every value is finite.
-    const double zeros = (0.0 * P.x[p]).sum() + (0.0 * P.v[p]).sum() + (0.0 * P.stress[p]).sum() + 0.0 * P.volume[p];
-    const bool valid = (zeros == 0.0) & (P.volume[p] > 0.0);
-    if (!valid) bad = std::min(bad, p);
-    if (!domain.contains(P.x[p])) outside = std::min(outside, p);
+  auto& shares = ThreadShares::of(LoopKind::Particles);
+  const auto start = ThreadShares::Clock::now();
+#pragma omp parallel reduction(min : bad, outside)
+  {
+    const auto mine = shares.mine(n);
+    for (int p = static_cast<int>(mine.begin); p < mine.end; ++p) {
+      // Without branches: 0 * a is 0 for every finite a and NaN for an infinite or NaN one, so the sum
+      // of the zeros is 0 exactly when every value is finite.
+      const double zeros = (0.0 * P.x[p]).sum() + (0.0 * P.v[p]).sum() + (0.0 * P.stress[p]).sum() + 0.0 * P.volume[p];
+      const bool valid = (zeros == 0.0) & (P.volume[p] > 0.0);
+      if (!valid) bad = std::min(bad, p);
+      if (!domain.contains(P.x[p])) outside = std::min(outside, p);
+    }
+    shares.finished(start, mine.end - mine.begin);
   }
   if (bad < n) {
     std::ostringstream os;

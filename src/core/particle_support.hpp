@@ -16,6 +16,7 @@
 #include "scatter_schedule.hpp"
 #include "shape_function.hpp"
 #include "stencil.hpp"
+#include "thread_shares.hpp"
 
 namespace seismpm {
 
@@ -43,11 +44,13 @@ class ParticleSupport {
     schedule.prepare(n, grid.cells(axis), threads);
     first_outside_.assign(threads, n);
     if (active) active->start(grid, threads);
+    auto& shares = ThreadShares::of(LoopKind::Locate);
+    const auto start = ThreadShares::Clock::now();
 #pragma omp parallel num_threads(threads)
     {
       const int t = omp_get_thread_num(), team = omp_get_num_threads();
-      const int first_block = static_cast<int>(static_cast<long>(blocks) * t / team);
-      const int end_block = static_cast<int>(static_cast<long>(blocks) * (t + 1) / team);
+      const int first_block = static_cast<int>(shares.first(t, team, blocks));
+      const int end_block = static_cast<int>(shares.first(t + 1, team, blocks));
       const int lo = std::min(first_block * kStencilBlock, n), hi = std::min(end_block * kStencilBlock, n);
       typename ActiveNodes<Dim>::Marker marker;
       if (active) marker = active->marker(t);
@@ -75,6 +78,7 @@ class ParticleSupport {
       if (active) marker.flush();
       if (outside == n) schedule.count(t, lo, hi);  // an outside particle has no layer
       first_outside_[t] = outside;
+      shares.finished(start, end_block - first_block);
 #pragma omp barrier
       // Every thread reads the same values, so all go on or all stop.
       if (*std::min_element(first_outside_.begin(), first_outside_.begin() + team) == n) schedule.place(t, lo, hi);

@@ -8,6 +8,8 @@
 
 #include <vector>
 
+#include "thread_shares.hpp"
+
 namespace seismpm {
 
 class ScatterSchedule {
@@ -105,8 +107,14 @@ class ScatterSchedule {
   template <class G>
   void for_each_slab_of_own_cells(G&& g) const {
     const int slabs = static_cast<int>(begin_.size()) - 1;
+    auto& shares = ThreadShares::of(LoopKind::Slabs);
+    const auto start = ThreadShares::Clock::now();
 #pragma omp parallel
-    for_my_slabs(0, 1, slabs, [&](int s) { g(s, order_.data() + begin_[s], order_.data() + begin_[s + 1]); });
+    {
+      const long work =
+          for_my_slabs(0, 1, slabs, [&](int s) { g(s, order_.data() + begin_[s], order_.data() + begin_[s + 1]); });
+      shares.finished(start, work);
+    }
   }
   // Calls f(slab, p) for every particle, slabs in parallel, each slab's particles in order.
   template <class F>
@@ -172,13 +180,16 @@ class ScatterSchedule {
   };
 
   // Calls g(s) for every slab s with weight(s) > 0, in one parallel region: slabs of one colour at a
-  // time, shared among the threads by weight (for_my_share), with a barrier between colours (the
+  // time, shared among the threads by weight in the scatter loops' shares (for_my_share; each thread's
+  // work on a colour is timed, without its wait at the barrier), with a barrier between colours (the
   // region's end waits for the last). Slabs of one colour never reach the same node.
   template <class Weight, class G>
   static void by_colour(int slabs, Weight&& weight, G&& g) {
+    auto& shares = ThreadShares::of(LoopKind::Scatter);
 #pragma omp parallel
     for (int colour = 0; colour < kColours; ++colour) {
-      for_my_share(colour, kColours, slabs, weight, g);
+      const auto start = ThreadShares::Clock::now();  // each colour's work, without the wait after it
+      shares.finished(start, for_my_share(shares, colour, kColours, slabs, weight, g));
       if (colour + 1 < kColours) {
 #pragma omp barrier
       }
@@ -186,31 +197,37 @@ class ScatterSchedule {
   }
 
   // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
-  // below `slabs`, shared by weight(s) (the work of slab s) as for_my_slabs shares them by particles.
+  // below `slabs`, shared by weight(s) (the work of slab s) as for_my_slabs shares them by particles;
+  // returns the weight of the slabs it called.
   template <class Weight, class G>
-  static void for_my_share(int first, int step, int slabs, Weight&& weight, G&& g) {
+  static long for_my_share(const ThreadShares& shares, int first, int step, int slabs, Weight&& weight, G&& g) {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
     long total = 0;
     for (int s = first; s < slabs; s += step) total += weight(s);
-    const long lo = total * t / threads, hi = total * (t + 1) / threads;
-    long start = 0;  // weight of this colour's slabs before slab s
-    for (int s = first; s < slabs && start < hi; s += step) {
-      const long size = weight(s);
-      if (size > 0 && start >= lo) g(s);
+    const long lo = shares.first(t, threads, total), hi = shares.first(t + 1, threads, total);
+    // A slab is the thread's whose share holds the slab's middle: by its start, a share a little over
+    // an even split took a whole slab from the next thread (a tenth of a colour's work on the sand column).
+    long start = 0, mine = 0;  // weight of this colour's slabs before slab s; of those called
+    for (int s = first; s < slabs; s += step) {
+      const long size = weight(s), middle = 2 * start + size;  // twice the slab's middle
+      if (middle >= 2 * hi) break;
+      if (size > 0 && middle >= 2 * lo) g(s), mine += size;
       start += size;
     }
+    return mine;
   }
 
  private:
   // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
-  // below `slabs`. Each thread takes the slabs whose particles start in its equal share of those slabs'
-  // particles: contiguous runs of slabs, so a thread meets about the particles that the static loops
-  // over particles give it (its cache holds them), and the work is even where slabs differ in size.
-  // Which thread runs a slab changes no node's sum: a colour's slabs touch disjoint nodes.
+  // below `slabs`, shared by their particles (the slab loops' shares): contiguous runs of slabs, so a
+  // thread meets about the particles that the loops over particles give it (its cache holds them), and
+  // the work is even where slabs differ in size. Which thread runs a slab changes no node's sum: a
+  // colour's slabs touch disjoint nodes. Returns the particles of the slabs it called.
   template <class G>
-  void for_my_slabs(int first, int step, int slabs, G&& g) const {
-    for_my_share(
-        first, step, slabs, [&](int s) { return long{begin_[s + 1] - begin_[s]}; }, g);
+  long for_my_slabs(int first, int step, int slabs, G&& g) const {
+    return for_my_share(
+        ThreadShares::of(LoopKind::Slabs), first, step, slabs, [&](int s) { return long{begin_[s + 1] - begin_[s]}; },
+        g);
   }
 
   std::vector<int> slab_of_;

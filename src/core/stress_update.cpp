@@ -3,6 +3,7 @@
 // constitutive models, one batch per material, and Rayleigh damping's viscous stresses.
 #include "model.hpp"
 #include "objective_rate.hpp"
+#include "thread_shares.hpp"
 
 namespace seismpm {
 
@@ -29,41 +30,47 @@ void Model<Dim>::velocity_gradients(const StepContext& c) {
   const auto& S = contact_.nodes();
   strain_increment_.resize(n);
   spin_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (int p = 0; p < n; ++p) {
-    [[maybe_unused]] int f = 0;
-    if constexpr (Contact) {
-      if (contact_.rigid(P.body[p])) {  // no strain, no stress
-        strain_increment_[p] = Sym::Zero();
-        spin_[p].setZero();
-        continue;
-      }
-      f = contact_.field_of(P.body[p]);
-    }
-    Mat<Dim> L = Mat<Dim>::Zero();
-    auto gather = [&](auto slotted) {
-      for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) {
-        if constexpr (decltype(slotted)::value) {
-          const int k = S.index(i);
-          if (k >= 0) {
-            L.noalias() += S.velocity[S.slot(k, f)] * dN.transpose();
-            return;
-          }
+  auto& shares = ThreadShares::of(LoopKind::Particles);
+  const auto start = ThreadShares::Clock::now();
+#pragma omp parallel
+  {
+    const auto mine = shares.mine(n);
+    for (int p = static_cast<int>(mine.begin); p < mine.end; ++p) {
+      [[maybe_unused]] int f = 0;
+      if constexpr (Contact) {
+        if (contact_.rigid(P.body[p])) {  // no strain, no stress
+          strain_increment_[p] = Sym::Zero();
+          spin_[p].setZero();
+          continue;
         }
-        L.noalias() += G.velocity[i] * dN.transpose();
-      });
-    };
-    if (Contact && contact_.near_shared(support_.cell_of[p]))
-      gather(std::true_type{});
-    else
-      gather(std::false_type{});
-    // Entry by entry: the matrix form stored L in halves and read it back whole, a load that waits
-    // for both stores to retire (a third of this loop's time).
-    auto dl = [&](int a, int b) { return a < Dim && b < Dim ? dt * L(a, b) : 0.0; };
-    Sym& de = strain_increment_[p];
-    de[0] = dl(0, 0), de[1] = dl(1, 1), de[2] = dl(2, 2);
-    de[3] = 0.5 * (dl(0, 1) + dl(1, 0)), de[4] = 0.5 * (dl(1, 2) + dl(2, 1)), de[5] = 0.5 * (dl(0, 2) + dl(2, 0));
-    spin_[p] = Eigen::Vector3d(0.5 * (dl(0, 1) - dl(1, 0)), 0.5 * (dl(1, 2) - dl(2, 1)), 0.5 * (dl(0, 2) - dl(2, 0)));
+        f = contact_.field_of(P.body[p]);
+      }
+      Mat<Dim> L = Mat<Dim>::Zero();
+      auto gather = [&](auto slotted) {
+        for_each_node(st[p], G, [&](int i, double, const Vec<Dim>& dN) {
+          if constexpr (decltype(slotted)::value) {
+            const int k = S.index(i);
+            if (k >= 0) {
+              L.noalias() += S.velocity[S.slot(k, f)] * dN.transpose();
+              return;
+            }
+          }
+          L.noalias() += G.velocity[i] * dN.transpose();
+        });
+      };
+      if (Contact && contact_.near_shared(support_.cell_of[p]))
+        gather(std::true_type{});
+      else
+        gather(std::false_type{});
+      // Entry by entry: the matrix form stored L in halves and read it back whole, a load that waits
+      // for both stores to retire (a third of this loop's time).
+      auto dl = [&](int a, int b) { return a < Dim && b < Dim ? dt * L(a, b) : 0.0; };
+      Sym& de = strain_increment_[p];
+      de[0] = dl(0, 0), de[1] = dl(1, 1), de[2] = dl(2, 2);
+      de[3] = 0.5 * (dl(0, 1) + dl(1, 0)), de[4] = 0.5 * (dl(1, 2) + dl(2, 1)), de[5] = 0.5 * (dl(0, 2) + dl(2, 0));
+      spin_[p] = Eigen::Vector3d(0.5 * (dl(0, 1) - dl(1, 0)), 0.5 * (dl(1, 2) - dl(2, 1)), 0.5 * (dl(0, 2) - dl(2, 0)));
+    }
+    shares.finished(start, mine.end - mine.begin);
   }
 }
 
@@ -116,41 +123,47 @@ void Model<Dim>::rotate_close_and_update_volume(bool average) {
   const double max_volume_ratio = settings_.max_dilation;
   auto& P = particles_;
   const auto& cell_of = support_.cell_of;
-#pragma omp parallel for schedule(static)
-  for (int p = 0; p < n; ++p) {
-    if constexpr (Contact)
-      if (contact_.rigid(P.body[p])) continue;
-    Sym& de = strain_increment_[p];
-    const CellSums* cell = average ? &cell_sums_[cell_of[p]] : nullptr;
-    if (average) {
-      const double correction = (cell->dilation / cell->volume - trace(de)) / Dim;
-      for (int d = 0; d < Dim; ++d) de[d] += correction;
+  auto& shares = ThreadShares::of(LoopKind::Particles);
+  const auto start = ThreadShares::Clock::now();
+#pragma omp parallel
+  {
+    const auto mine = shares.mine(n);
+    for (int p = static_cast<int>(mine.begin); p < mine.end; ++p) {
+      if constexpr (Contact)
+        if (contact_.rigid(P.body[p])) continue;
+      Sym& de = strain_increment_[p];
+      const CellSums* cell = average ? &cell_sums_[cell_of[p]] : nullptr;
+      if (average) {
+        const double correction = (cell->dilation / cell->volume - trace(de)) / Dim;
+        for (int d = 0; d < Dim; ++d) de[d] += correction;
+      }
+      Mat3 w = Mat3::Zero();
+      w(0, 1) = spin_[p][0], w(1, 0) = -spin_[p][0];
+      w(1, 2) = spin_[p][1], w(2, 1) = -spin_[p][1];
+      w(0, 2) = spin_[p][2], w(2, 0) = -spin_[p][2];
+      P.stress[p] = rotate_objectively(P.stress[p], w);
+      P.strain[p] += de;
+      // Volume from the (averaged) strain increment: V <- V (1 + tr de) to first order, exactly as det(I + dt L)
+      // when nothing is averaged.
+      const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
+      // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
+      // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
+      // Only a compressed particle can close (an opened one's opening is positive): the logarithm is
+      // taken for those alone. With the cell-averaged volumetric strain the opening is the cell's, as the
+      // volumetric increment is: judged particle by particle, the volume each particle drifts to in a
+      // cell of unequal neighbours opened some while others carried the load, and stress-free particles
+      // in a resting deposit's surface kept it creeping (docs/kernel.md).
+      if (-trace(de) > 0.0 && (average ? closes_by_cell(p, cell_of[p]) : opened(p))) {
+        const double opening = average ? std::log(cell->volume / cell->free_volume)
+                                       : std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
+        const double closing = std::min(-trace(de), opening);
+        for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
+      }
+      P.volume[p] *= F.template topLeftCorner<Dim, Dim>().determinant();
+      if (max_volume_ratio > 0.0)
+        P.volume[p] = std::min(P.volume[p], max_volume_ratio * P.mass[p] / constants_.initial_density[P.material[p]]);
     }
-    Mat3 w = Mat3::Zero();
-    w(0, 1) = spin_[p][0], w(1, 0) = -spin_[p][0];
-    w(1, 2) = spin_[p][1], w(2, 1) = -spin_[p][1];
-    w(0, 2) = spin_[p][2], w(2, 0) = -spin_[p][2];
-    P.stress[p] = rotate_objectively(P.stress[p], w);
-    P.strain[p] += de;
-    // Volume from the (averaged) strain increment: V <- V (1 + tr de) to first order, exactly as det(I + dt L)
-    // when nothing is averaged.
-    const Mat3 F = Mat3::Identity() + to_matrix(de) + w;
-    // Crack closure: volumetric compression first closes what the tension cut-off opened (down to the
-    // stress-free volume), at no change of mean stress; the rest, and all shear, loads the material.
-    // Only a compressed particle can close (an opened one's opening is positive): the logarithm is
-    // taken for those alone. With the cell-averaged volumetric strain the opening is the cell's, as the
-    // volumetric increment is: judged particle by particle, the volume each particle drifts to in a
-    // cell of unequal neighbours opened some while others carried the load, and stress-free particles
-    // in a resting deposit's surface kept it creeping (docs/kernel.md).
-    if (-trace(de) > 0.0 && (average ? closes_by_cell(p, cell_of[p]) : opened(p))) {
-      const double opening = average ? std::log(cell->volume / cell->free_volume)
-                                     : std::log(P.volume[p] * constants_.initial_density[P.material[p]] / P.mass[p]);
-      const double closing = std::min(-trace(de), opening);
-      for (int d = 0; d < Dim; ++d) de[d] += closing / Dim;
-    }
-    P.volume[p] *= F.template topLeftCorner<Dim, Dim>().determinant();
-    if (max_volume_ratio > 0.0)
-      P.volume[p] = std::min(P.volume[p], max_volume_ratio * P.mass[p] / constants_.initial_density[P.material[p]]);
+    shares.finished(start, mine.end - mine.begin);
   }
 }
 
@@ -190,12 +203,18 @@ const char* Model<Dim>::closable_flags(CellOf&& cell_of, const std::vector<CellS
   const bool any_rigid = contact_.any_rigid();
   may_close_.resize(n);
   int looser = 0;
-#pragma omp parallel for schedule(static) reduction(+ : looser)
-  for (int p = 0; p < n; ++p) {
-    const bool loose = opened(p) && !(any_rigid && contact_.rigid(particles_.body[p]));
-    const CellSums& cell = sums[cell_of(p)];
-    may_close_[p] = loose && exceeds_free_volume(cell.volume, cell.free_volume);
-    looser += loose;
+  auto& shares = ThreadShares::of(LoopKind::Particles);
+  const auto start = ThreadShares::Clock::now();
+#pragma omp parallel reduction(+ : looser)
+  {
+    const auto mine = shares.mine(n);
+    for (int p = static_cast<int>(mine.begin); p < mine.end; ++p) {
+      const bool loose = opened(p) && !(any_rigid && contact_.rigid(particles_.body[p]));
+      const CellSums& cell = sums[cell_of(p)];
+      may_close_[p] = loose && exceeds_free_volume(cell.volume, cell.free_volume);
+      looser += loose;
+    }
+    shares.finished(start, mine.end - mine.begin);
   }
   return looser == 0 ? nullptr : may_close_.data();
 }

@@ -1,5 +1,7 @@
 #include "time_step.hpp"
 
+#include "thread_shares.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -27,22 +29,29 @@ double fastest_undamped_signal(const Particles<Dim>& P, const MaterialConstants&
   const double* const tensionless = c.tensionless.data();
   const double* const intact = c.intact_wave_squared.data();  // M / rho0
   double max_speed = 0.0;
-#pragma omp parallel for simd schedule(static) reduction(max : max_speed)
-  for (int p = 0; p < n; ++p) {
-    const int m = material[p];
-    const double rho = mass[p] / volume[p];
-    const double loaded = M[m] / rho;
-    double squared = loaded;
-    if constexpr (Closure) {
-      bool opened = (tensionless[m] != 0.0) & looser_than_initial(rho, rho0[m]);  // as wave_speed
-      if constexpr (Flags) opened &= may_close[p] != 0;
-      const double unloaded = std::max(intact[m], G[m] / rho);
-      squared = opened ? unloaded : loaded;
+  auto& shares = ThreadShares::of(LoopKind::Particles);
+  const auto start = ThreadShares::Clock::now();
+#pragma omp parallel reduction(max : max_speed)
+  {
+    const auto mine = shares.mine(n);
+#pragma omp simd reduction(max : max_speed)
+    for (int p = static_cast<int>(mine.begin); p < static_cast<int>(mine.end); ++p) {
+      const int m = material[p];
+      const double rho = mass[p] / volume[p];
+      const double loaded = M[m] / rho;
+      double squared = loaded;
+      if constexpr (Closure) {
+        bool opened = (tensionless[m] != 0.0) & looser_than_initial(rho, rho0[m]);  // as wave_speed
+        if constexpr (Flags) opened &= may_close[p] != 0;
+        const double unloaded = std::max(intact[m], G[m] / rho);
+        squared = opened ? unloaded : loaded;
+      }
+      double v2 = 0.0;
+      for (int d = 0; d < Dim; ++d) v2 += velocity[Dim * p + d] * velocity[Dim * p + d];
+      const double speed = std::sqrt(squared) + std::sqrt(v2);
+      max_speed = std::max(max_speed, speed);
     }
-    double v2 = 0.0;
-    for (int d = 0; d < Dim; ++d) v2 += velocity[Dim * p + d] * velocity[Dim * p + d];
-    const double speed = std::sqrt(squared) + std::sqrt(v2);
-    max_speed = std::max(max_speed, speed);
+    shares.finished(start, mine.end - mine.begin);
   }
   return max_speed;
 }

@@ -12,6 +12,7 @@
 #include <omp.h>
 
 #include "core/error.hpp"
+#include "core/thread_shares.hpp"
 #include "principal_stress.hpp"
 
 namespace seismpm {
@@ -400,12 +401,13 @@ void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneR
   }
 }
 
-// Two passes in one parallel region. The first, each thread over its own block of particles (as a
-// static schedule), settles the elastic trials inline and lists the rest, with their trials, in order
-// in its block's part of the scratch list. The second shares the listed returns evenly: the yielding
-// particles of a slope lie together in the cell-sorted order, and left to the thread whose block held
-// them they kept the other one waiting. Each particle's update is the same function of its own state
-// either way, so the results do not depend on the threads.
+// Two passes in one parallel region. The first, each thread over its own block of particles (its
+// share of the material's loops, ThreadShares, timed there), settles the elastic trials inline and
+// lists the rest, with their trials, in order in its block's part of the scratch list. The second
+// shares the listed returns in the same proportions: the yielding particles of a slope lie together in
+// the cell-sorted order, and left to the thread whose block held them they kept the other one waiting.
+// Each particle's update is the same function of its own state either way, so the results do not
+// depend on the threads.
 void MohrCoulomb::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
   const bool fixed_strength = !p_.softening;
@@ -414,10 +416,12 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
   deferred.resize(b.count);
   const int threads = omp_get_max_threads();
   listed.assign(threads + 1, 0);
+  auto& shares = ThreadShares::of(LoopKind::Material);
+  const auto start = ThreadShares::Clock::now();
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-    const auto block_start = [&](int j) { return static_cast<int>(static_cast<long>(b.count) * j / nt); };
+    const auto block_start = [&](int j) { return static_cast<int>(shares.first(j, nt, b.count)); };
     const int lo = block_start(t), hi = block_start(t + 1);
     int found = 0;
     for (int k = lo; k < hi; ++k) {
@@ -443,13 +447,14 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
       d.k = k;
     }
     listed[t + 1] = found;
+    shares.finished(start, hi - lo);
 #pragma omp barrier
     // Block j's listed entries are deferred[block_start(j), block_start(j) + listed[j + 1]); this
-    // thread takes the entries [first, last) of their concatenation.
+    // thread takes its share, entries [first, last), of their concatenation.
     int total = 0;
     for (int j = 0; j < nt; ++j) total += listed[j + 1];
-    const int first = static_cast<int>(static_cast<long>(total) * t / nt);
-    const int last = static_cast<int>(static_cast<long>(total) * (t + 1) / nt);
+    const int first = static_cast<int>(shares.first(t, nt, total));
+    const int last = static_cast<int>(shares.first(t + 1, nt, total));
     // This thread's entries block by block (each block's entries are contiguous in `deferred`), a chunk
     // at a time: the chunk's plane-strain returns at fixed strength together (plane_returns; entries of
     // 3D trials get values too, which nothing reads), then each entry's result written or its general

@@ -164,11 +164,13 @@ TEST_CASE("scatter schedule: a share by weight visits every weighted slab of the
   const int saved = omp_get_max_threads();
   for (int threads : {1, 2, 3, 5}) {
     omp_set_num_threads(threads);
+    ThreadShares shares;
+    shares.prepare(threads);
     for (int colour = 0; colour < 2; ++colour) {
       std::vector<int> owner(slabs, -1), visits(slabs, 0);
 #pragma omp parallel
       ScatterSchedule::for_my_share(
-          colour, 2, slabs, [&](int s) { return weight[s]; },
+          shares, colour, 2, slabs, [&](int s) { return weight[s]; },
           [&](int s) {
 #pragma omp atomic
             ++visits[s];
