@@ -6,9 +6,15 @@
 namespace seismpm {
 
 namespace {
-// Each step moves a share this fraction of the way to the measured speeds: one step's timing (a page
-// fault, an interrupt) moves it little, and the cores' speeds keep for hundreds of steps.
-constexpr double kBlend = 0.15;
+// Each step moves a share this fraction of the way to the measured speeds.
+constexpr double kBlend = 0.3;
+// Of the last kWindow steps, this many must find a thread faster (or slower) than an even split for
+// its share to grow (or shrink), and then only as far as the least of those. A thread that another
+// program preempts now and then is slow in some loops and not in others, and a share taken from it in
+// every loop made the other thread the slow one in the rest (mc-sand, 2 threads, a loop busy 30 % of
+// each millisecond on one core: 4-8 % slower by the median of the steps); a core that is slower
+// throughout is slower in every step.
+constexpr int kAgreeing = 7;
 // Speeds within this fraction of an even split count as even: where the cores run alike, the shares
 // stay equal instead of following the timing's noise.
 constexpr double kDeadBand = 0.06;
@@ -32,11 +38,13 @@ void ThreadShares::prepare(int threads) {
   threads_ = std::max(threads, 1);
   const int n = std::min(threads_, kMaxThreads);
   for (int t = 0; t < n; ++t) share_[t] = 1.0 / n, busy_[t] = Busy{};
+  measured_ = 0;
   set_cumulative();
 }
 
-// Each thread's speed is the work it did over the time it took. The shares are held within [1/2, 3/2]
-// of an even split, whatever the timing said.
+// Each thread's speed is the work it did over the time it took, kept as its proportion of the team's
+// for the last kWindow timed steps. The shares move toward the proportions that kAgreeing steps reach,
+// and are held within [1/2, 3/2] of an even split whatever the timing said.
 void ThreadShares::update() {
   const int n = threads_;
   if (n <= 1 || n > kMaxThreads) return;
@@ -45,17 +53,28 @@ void ThreadShares::update() {
   if (timed) {
     double speed[kMaxThreads], total = 0.0;
     for (int t = 0; t < n; ++t) total += speed[t] = busy_[t].work / busy_[t].seconds;
-    double sum = 0.0;
-    for (int t = 0; t < n; ++t) {
-      double target = speed[t] / total;
-      if (std::abs(target * n - 1.0) < kDeadBand) target = 1.0 / n;
-      share_[t] = std::clamp((1.0 - kBlend) * share_[t] + kBlend * target, 0.5 / n, 1.5 / n);
-      sum += share_[t];
-    }
-    for (int t = 0; t < n; ++t) share_[t] /= sum;
-    set_cumulative();
+    for (int t = 0; t < n; ++t) proportion_[t][measured_ % kWindow] = speed[t] / total;
+    measured_ = measured_ + 1 < 2 * kWindow ? measured_ + 1 : kWindow;  // full from kWindow on; the slot cycles
   }
   for (int t = 0; t < n; ++t) busy_[t] = Busy{};
+  if (measured_ < kWindow) return;
+  double agreed[kMaxThreads], total = 0.0;
+  for (int t = 0; t < n; ++t) {
+    auto window = proportion_[t];
+    std::sort(window.begin(), window.end());
+    // Sorted, the kAgreeing-th fastest and the kAgreeing-th slowest; even unless one of them says so.
+    const double fast = window[kWindow - kAgreeing], slow = window[kAgreeing - 1];
+    total += agreed[t] = fast > 1.0 / n ? fast : slow < 1.0 / n ? slow : 1.0 / n;
+  }
+  double sum = 0.0;
+  for (int t = 0; t < n; ++t) {
+    double target = agreed[t] / total;
+    if (std::abs(target * n - 1.0) < kDeadBand) target = 1.0 / n;
+    share_[t] = std::clamp((1.0 - kBlend) * share_[t] + kBlend * target, 0.5 / n, 1.5 / n);
+    sum += share_[t];
+  }
+  for (int t = 0; t < n; ++t) share_[t] /= sum;
+  set_cumulative();
 }
 
 void ThreadShares::set(const std::vector<double>& shares) {

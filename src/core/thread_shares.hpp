@@ -83,7 +83,10 @@ class ThreadShares {
   struct alignas(64) Busy {         // a cache line per thread: each writes its own
     double seconds = 0.0, work = 0.0;
   };
+  static constexpr int kWindow = 9;  // steps whose speeds count, by their median
   int threads_ = 0;
+  int measured_ = 0;  // timed steps (up to kWindow), then kWindow + the next slot
+  std::array<std::array<double, kWindow>, kMaxThreads> proportion_{};  // per thread, of each measured step
   std::array<double, kMaxThreads> share_{};
   std::array<long long, kMaxThreads + 1> cumulative_{};  // in units of 2^-kBits; the team's last is 2^kBits
   std::array<Busy, kMaxThreads> busy_{};

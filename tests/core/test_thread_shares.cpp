@@ -54,18 +54,38 @@ TEST_CASE("thread shares: contiguous ranges that cover every item once", "[core]
 TEST_CASE("thread shares follow the measured speeds, within bounds", "[core][parallel]") {
   ThreadShares shares;
   shares.prepare(2);
-  // Thread 0 does the same work in half the time: its share moves 15 % of the way to 2/3 each step.
+  // Thread 0 does the same work in half the time. Nothing moves until nine steps are timed; then each
+  // step moves the share 30 % of the way to 2/3.
+  for (int step = 0; step < 8; ++step) {
+    time_loop(shares, {1e-3, 2e-3}, 1000);
+    shares.update();
+  }
+  CHECK(shares.share(0) == 0.5);
   time_loop(shares, {1e-3, 2e-3}, 1000);
   shares.update();
-  CHECK(shares.share(0) == Approx(0.5 + 0.15 * (2.0 / 3.0 - 0.5)).epsilon(1e-9));
-  for (int step = 0; step < 100; ++step) {
-    // The same speeds, measured on the shares of the moment: work in proportion to the share.
-    time_loop(shares, {1e-3, 1e-3}, 1000);  // equal times for...
-    shares.update();                        // ...equal work: even speeds, inside the dead band
+  CHECK(shares.share(0) == Approx(0.5 + 0.3 * (2.0 / 3.0 - 0.5)).epsilon(1e-9));
+  // Slow in five steps of nine (preempted now and then by another program): not slow in the seven
+  // steps that a share needs, so the shares stay even.
+  shares.prepare(3);
+  shares.prepare(2);
+  for (int step = 0; step < 90; ++step) {
+    time_loop(shares, {step % 9 < 5 ? 10e-3 : 1e-3, 1e-3}, 1000);
+    shares.update();
   }
-  CHECK(shares.share(0) == Approx(0.5).margin(1e-6));  // back to even
+  CHECK(shares.share(0) == Approx(0.5).margin(1e-12));
+  // Equal again after an uneven spell.
+  for (int step = 0; step < 20; ++step) {
+    time_loop(shares, {1e-3, 2e-3}, 1000);
+    shares.update();
+  }
+  CHECK(shares.share(0) > 0.6);
+  for (int step = 0; step < 100; ++step) {
+    time_loop(shares, {1e-3, 1e-3}, 1000);
+    shares.update();
+  }
+  CHECK(shares.share(0) == Approx(0.5).margin(1e-6));
   // A thread twenty times slower still keeps a quarter of the work (the bound).
-  for (int step = 0; step < 200; ++step) {
+  for (int step = 0; step < 100; ++step) {
     time_loop(shares, {1e-3, 20e-3}, 1000);
     shares.update();
   }
@@ -79,9 +99,12 @@ TEST_CASE("thread shares follow the measured speeds, within bounds", "[core][par
     shares.update();
   }
   CHECK(shares.share(0) == Approx(0.5).margin(1e-12));
-  // A loop some thread did not time (a team of another size) leaves the shares as they are.
-  time_loop(shares, {1e-3}, 1000);
-  const double before = shares.share(0);
-  shares.update();
-  CHECK(shares.share(0) == before);
+  // A loop timed by a team of another size is not counted.
+  shares.prepare(3);
+  shares.prepare(2);
+  for (int step = 0; step < 20; ++step) {
+    time_loop(shares, {1e-3}, 1000);
+    shares.update();
+  }
+  CHECK(shares.share(0) == 0.5);
 }
