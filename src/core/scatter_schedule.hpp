@@ -220,9 +220,9 @@ class ScatterSchedule {
  private:
   // Inside a parallel region: calls g(s) for this thread's share of the slabs first, first + step, ...
   // below `slabs`, shared by their particles (the slab loops' shares): contiguous runs of slabs, so a
-  // thread meets about the particles that the loops over particles give it (its cache holds them), and
-  // the work is even where slabs differ in size. Which thread runs a slab changes no node's sum: a
-  // colour's slabs touch disjoint nodes. Returns the particles of the slabs it called.
+  // thread meets about the particles that the loops over particles give it (its cache may hold them;
+  // each kind of loop has its own shares), and the work is even where slabs differ in size. Which thread runs a slab
+  // changes no node's sum: a colour's slabs touch disjoint nodes. Returns the particles of the slabs it called.
   template <class G>
   long for_my_slabs(int first, int step, int slabs, G&& g) const {
     return for_my_share(

@@ -9,7 +9,8 @@ namespace {
 // Each step moves a share this fraction of the way to the measured speeds.
 constexpr double kBlend = 0.3;
 // Of the last kWindow steps, this many must find a thread faster (or slower) than an even split for
-// its share to grow (or shrink), and then only as far as the least of those. A thread that another
+// its share to grow (or shrink), and then only as far as all of those reach (the least of them for a
+// faster thread, the greatest for a slower one). A thread that another
 // program preempts now and then is slow in some loops and not in others, and a share taken from it in
 // every loop made the other thread the slow one in the rest (mc-sand, 2 threads, a loop busy 30 % of
 // each millisecond on one core: 4-8 % slower by the median of the steps); a core that is slower
@@ -44,7 +45,8 @@ void ThreadShares::prepare(int threads) {
 
 // Each thread's speed is the work it did over the time it took, kept as its proportion of the team's
 // for the last kWindow timed steps. The shares move toward the proportions that kAgreeing steps reach,
-// and are held within [1/2, 3/2] of an even split whatever the timing said.
+// and are clamped to [1/2, 3/2] of an even split before they are normalised, whatever the timing said
+// (for two threads that keeps them within those bounds; for more, about).
 void ThreadShares::update() {
   const int n = threads_;
   if (n <= 1 || n > kMaxThreads) return;
@@ -80,8 +82,12 @@ void ThreadShares::update() {
 void ThreadShares::set(const std::vector<double>& shares) {
   const int n = std::min(threads_, kMaxThreads);
   double sum = 0.0;
-  for (int t = 0; t < n; ++t) sum += share_[t] = t < static_cast<int>(shares.size()) ? std::max(shares[t], 0.0) : 0.0;
-  for (int t = 0; t < n; ++t) share_[t] = sum > 0.0 ? share_[t] / sum : 1.0 / n;
+  for (int t = 0; t < n; ++t) {
+    const double v = t < static_cast<int>(shares.size()) ? shares[t] : 0.0;
+    sum += share_[t] = std::isfinite(v) && v > 0.0 ? v : 0.0;
+  }
+  const bool usable = std::isfinite(sum) && sum > 0.0;  // else even shares
+  for (int t = 0; t < n; ++t) share_[t] = usable ? share_[t] / sum : 1.0 / n;
   set_cumulative();
 }
 

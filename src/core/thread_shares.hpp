@@ -3,8 +3,8 @@
 // tens of milliseconds at a time (either core, in turns), and with equal shares the faster thread waited
 // at the end of every loop for the slower one. Each thread therefore takes a contiguous share in
 // proportion to the speed it showed in the last steps: the loops that time themselves note how much
-// work each thread did and when it finished (from the region's start, so that a late wake-up counts as
-// slowness), and update() moves the shares toward the measured speeds between steps. Each kind of loop
+// work each thread did and when it finished (most from the region's start, so that a late wake-up counts
+// as slowness), and update() moves the shares toward the measured speeds between steps. Each kind of loop
 // has shares of its own: a thread that was faster at arithmetic was not always faster at the scatters.
 //
 // Which thread computes which particle or slab never changes a result: every loop that takes its share
@@ -83,7 +83,7 @@ class ThreadShares {
   struct alignas(64) Busy {         // a cache line per thread: each writes its own
     double seconds = 0.0, work = 0.0;
   };
-  static constexpr int kWindow = 9;  // steps whose speeds count, by their median
+  static constexpr int kWindow = 9;  // the timed steps whose speeds count (kAgreeing of them must agree)
   int threads_ = 0;
   int measured_ = 0;  // timed steps (up to kWindow), then kWindow + the next slot
   std::array<std::array<double, kWindow>, kMaxThreads> proportion_{};  // per thread, of each measured step
