@@ -10,11 +10,11 @@ namespace {
 constexpr double kBlend = 0.3;
 // Of the last kWindow steps, this many must find a thread faster (or slower) than an even split for
 // its share to grow (or shrink), and then only as far as all of those reach (the least of them for a
-// faster thread, the greatest for a slower one). A thread that another
-// program preempts now and then is slow in some loops and not in others, and a share taken from it in
-// every loop made the other thread the slow one in the rest (mc-sand, 2 threads, a loop busy 30 % of
-// each millisecond on one core: 4-8 % slower by the median of the steps); a core that is slower
-// throughout is slower in every step.
+// faster thread, the greatest for a slower one). A thread that another program preempts now and then
+// is slow in some loops and not in others, and a share taken from it in every loop made the other
+// thread the slow one in the rest (mc-sand, 2 threads, a loop busy 30 % of each millisecond on one
+// core: about 8 % slower following each step's speeds, 5 % by the median of 9 steps); a core that is
+// slower throughout is slower in every step.
 constexpr int kAgreeing = 7;
 // Speeds within this fraction of an even split count as even: where the cores run alike, the shares
 // stay equal instead of following the timing's noise.
