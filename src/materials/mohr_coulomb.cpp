@@ -287,7 +287,7 @@ MohrCoulomb::Result MohrCoulomb::integrate(const Sym& stress, const Sym& de, dou
 // integrate_plane's to round-off: the compiler may fuse the products differently). The entries'
 // values are first copied into arrays a chunk at a time (the vectoriser does not load fields of the
 // entries in place).
-void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneReturns& out) const {
+void MohrCoulomb::plane_returns(const PlaneTrial* entries, int count, const PlaneReturns& out) const {
   const ReturnTables& t = fixed_;
   double a[6][3], db[6][3], r[6], inverse[8][3][3];
   for (int j = 0; j < 6; ++j) {
@@ -312,10 +312,10 @@ void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneR
   assert(count <= kChunk);  // the caller's chunk
   const int n = count;
   for (int i = 0; i < n; ++i) {
-    const Deferred& e = entries[i];
-    v0s[i] = e.principal.v[0], v1s[i] = e.principal.v[1], v2s[i] = e.principal.v[2];
-    ds[i] = e.principal.d, rs[i] = e.principal.r, xys[i] = e.trial[3];
-    s0s[i] = e.principal.slot[0], s1s[i] = e.principal.slot[1];
+    const PlaneTrial& e = entries[i];
+    v0s[i] = e.v[0], v1s[i] = e.v[1], v2s[i] = e.v[2];
+    ds[i] = e.d, rs[i] = e.r, xys[i] = e.xy;
+    s0s[i] = e.slot0, s1s[i] = e.slot1;
   }
   // Local, unaliased pointers: read through `out` in the loop, each store could have changed them.
   double* __restrict xx = out.xx;
@@ -402,20 +402,23 @@ void MohrCoulomb::plane_returns(const Deferred* entries, int count, const PlaneR
 }
 
 // Two passes in one parallel region. The first, each thread over its own block of particles (its
-// share of the material's loops, ThreadShares, timed there), settles the elastic trials inline and
-// lists the rest, with their trials, in order in its block's part of the scratch list. The second
-// shares the listed returns in the same proportions: the yielding particles of a slope lie together in
-// the cell-sorted order, and left to the thread whose block held them they kept the other one waiting.
-// Each particle's update is the same function of its own state either way, so the results do not
-// depend on the threads.
+// share of the material's loops, ThreadShares, timed there), settles the elastic trials and lists the
+// rest in order in its block's part of the scratch lists. The second shares the listed returns in the
+// same proportions: the yielding particles of a slope lie together in the cell-sorted order, and left
+// to the thread whose block held them they kept the other one waiting. Each particle's update is the
+// same function of its own state either way, so the results do not depend on the threads.
 void MohrCoulomb::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
   const bool fixed_strength = !p_.softening;
-  std::vector<Deferred>& deferred = deferred_;
-  std::vector<int>& listed = listed_;
+  std::vector<int>& deferred = deferred_;
+  std::vector<PlaneTrial>& plane_trials = plane_trials_;
   deferred.resize(b.count);
+  plane_trials.resize(b.count);
+  std::vector<int>& listed = listed_;
   const int threads = omp_get_max_threads();
   listed.assign(threads + 1, 0);
+  const double face_a0 = fixed_.a[0][0], face_a1 = fixed_.a[0][1], face_a2 = fixed_.a[0][2];
+  const double face_r = fixed_.r[0], tension = p_.tension;
   auto& shares = ThreadShares::of(LoopKind::Material);
   const auto start = ThreadShares::Clock::now();
 #pragma omp parallel num_threads(threads)
@@ -424,66 +427,101 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
     const auto block_start = [&](int j) { return static_cast<int>(shares.first(j, nt, b.count)); };
     const int lo = block_start(t), hi = block_start(t + 1);
     int found = 0;
-    for (int k = lo; k < hi; ++k) {
-      const int p = b.index[k];
-      const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
-      const bool plane = trial[4] == 0.0 && trial[5] == 0.0;  // plane strain: integrate_trial's first case
-      PlanePrincipal pp{};
-      if (plane) {
-        pp = plane_principal(trial);
-        // Most updates are elastic: decided inline, by the test the full update makes (plastic_tables).
-        if (fixed_strength && elastic_at_fixed_strength(Eigen::Vector3d(pp.v[0], pp.v[1], pp.v[2]))) {
-          b.stress[p] = trial;
+    // A chunk at a time: the trials gathered into arrays, then their principal values (plane_principal's
+    // arithmetic, its compare-and-swaps as selects) and the elastic test lane by lane, which the compiler
+    // vectorises (particle by particle, the swaps' branches were mispredicted and the trial was read
+    // back through memory), then each trial settled or listed.
+    constexpr int C = kPlaneChunk;
+    alignas(64) double t0[C], t1[C], t2[C], t3[C], t4[C], t5[C];
+    alignas(64) double mm[C], dd[C], rr[C], v0[C], v1[C], v2[C], sl0[C], sl1[C], fast[C], elastic[C];
+    for (int k0 = lo; k0 < hi; k0 += C) {
+      const int n = std::min(C, hi - k0);
+      for (int i = 0; i < n; ++i) {
+        const int p = b.index[k0 + i];
+        const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+        t0[i] = trial[0], t1[i] = trial[1], t2[i] = trial[2], t3[i] = trial[3], t4[i] = trial[4], t5[i] = trial[5];
+      }
+      // m, d and r first, through memory: the values m +- r are then sums of m as plane_principal
+      // rounds it (read in the same loop, the compiler fused 0.5 (xx + yy) +- r into one rounding).
+      for (int i = 0; i < n; ++i) {
+        mm[i] = 0.5 * (t0[i] + t1[i]), dd[i] = 0.5 * (t0[i] - t1[i]);
+        rr[i] = std::sqrt(dd[i] * dd[i] + t3[i] * t3[i]);
+      }
+      for (int i = 0; i < n; ++i) {
+        double a = mm[i] + rr[i], bb = mm[i] - rr[i], c = t2[i], sa = 0.0, sb = 1.0, sc = 2.0;
+        // Where the first value is below the second, the two swap, with their slots.
+        bool swap = bb < c;
+        double up = swap ? c : bb, down = swap ? bb : c, up_slot = swap ? sc : sb, down_slot = swap ? sb : sc;
+        bb = up, c = down, sb = up_slot, sc = down_slot;
+        swap = a < bb;
+        up = swap ? bb : a, down = swap ? a : bb, up_slot = swap ? sb : sa, down_slot = swap ? sa : sb;
+        a = up, bb = down, sa = up_slot, sb = down_slot;
+        swap = bb < c;
+        up = swap ? c : bb, down = swap ? bb : c, up_slot = swap ? sc : sb;
+        bb = up, c = down, sb = up_slot;
+        v0[i] = a, v1[i] = bb, v2[i] = c, sl0[i] = sa, sl1[i] = sb;
+        // Plane strain (integrate_trial's first case) at fixed strength: plane_returns' entries.
+        fast[i] = fixed_strength & (t4[i] == 0.0) & (t5[i] == 0.0);
+        // elastic_at_fixed_strength's test, in its order of operations, without its branch.
+        const double face = (face_a0 * a + face_a1 * bb) + face_a2 * c - face_r;
+        elastic[i] = !((face > 0.0) | (a - tension > 0.0));
+      }
+      for (int i = 0; i < n; ++i) {
+        const int k = k0 + i, p = b.index[k];
+        if (fast[i] != 0.0 && elastic[i] != 0.0) {  // the test the full update makes (plastic_tables)
+          Sym& s = b.stress[p];
+          s[0] = t0[i], s[1] = t1[i], s[2] = t2[i], s[3] = t3[i], s[4] = t4[i], s[5] = t5[i];
           b.yield[p] = 0;
           continue;
         }
+        const int slot = lo + found++;
+        if (fast[i] != 0.0) {
+          deferred[slot] = k;
+          plane_trials[slot] = PlaneTrial{{v0[i], v1[i], v2[i]}, dd[i], rr[i], t3[i], sl0[i], sl1[i]};
+        } else {
+          deferred[slot] = ~k;
+          plane_trials[slot] = PlaneTrial{};  // plane_returns computes with it; nothing reads the result
+        }
       }
-      // Field by field: built as one temporary, the entry was assembled on the stack from narrow stores
-      // and copied with wide loads that waited for them (a third of this loop's samples under perf).
-      Deferred& d = deferred[lo + found++];
-      d.trial = trial;
-      d.principal = pp;
-      d.plane = plane;
-      d.k = k;
     }
     listed[t + 1] = found;
     shares.finished(start, hi - lo);
 #pragma omp barrier
-    // Block j's listed entries are deferred[block_start(j), block_start(j) + listed[j + 1]); this
-    // thread takes its share, entries [first, last), of their concatenation.
+    // Block j's listed entries are at [block_start(j), block_start(j) + listed[j + 1]) of the lists;
+    // this thread takes its share, entries [first, last), of their concatenation.
     int total = 0;
     for (int j = 0; j < nt; ++j) total += listed[j + 1];
     const int first = static_cast<int>(shares.first(t, nt, total));
     const int last = static_cast<int>(shares.first(t + 1, nt, total));
-    // This thread's entries block by block (each block's entries are contiguous in `deferred`), a chunk
-    // at a time: the chunk's plane-strain returns at fixed strength together (plane_returns; entries of
-    // 3D trials get values too, which nothing reads), then each entry's result written or its general
-    // return made. The results of one chunk at a time: kept for every listed entry, they cost 24 bytes a
-    // particle of peak memory in bench/memory.sh's block.
+    // This thread's entries block by block (each block's entries are contiguous), a chunk at a time:
+    // the chunk's plane-strain returns at fixed strength together (plane_returns), then each entry's
+    // result written or its general return made. The results of one chunk at a time: kept for every
+    // listed entry, they cost 24 bytes a particle of peak memory in bench/memory.sh's block.
     alignas(64) double xx[kPlaneChunk], yy[kPlaneChunk], zz[kPlaneChunk], xy[kPlaneChunk], shear[kPlaneChunk];
     const PlaneReturns plane{xx, yy, zz, xy, shear};
     int block = 0, before = 0;  // entries in the blocks before `block`
     while (block < nt && before + listed[block + 1] <= first) before += listed[++block];
     for (int e = first; e < last;) {
       const int block_end = std::min(last, before + listed[block + 1]);
-      const Deferred* entries = deferred.data() + block_start(block) + (e - before);
+      const int offset = block_start(block) + (e - before);
+      const int* ks = deferred.data() + offset;
       const int n = std::min(kPlaneChunk, block_end - e);
-      bool any_plane = false;  // none in a 3D model: its chunks need no plane-strain returns
-      for (int i = 0; i < n; ++i) any_plane |= entries[i].plane;
-      if (fixed_strength && any_plane) plane_returns(entries, n, plane);
+      bool any_fast = false;  // none in a 3D model or a softening one: no plane-strain returns
+      for (int i = 0; i < n; ++i) any_fast |= ks[i] >= 0;
+      if (any_fast) plane_returns(plane_trials.data() + offset, n, plane);
       for (int i = 0; i < n; ++i) {
-        const Deferred& d = entries[i];
-        const int p = b.index[d.k];
-        if (fixed_strength && d.plane) {  // plastic: the trial was not elastic
-          Sym& s = b.stress[p];
+        const int k = ks[i];
+        if (k >= 0) {  // plastic: the trial was not elastic
+          Sym& s = b.stress[b.index[k]];
           s[0] = xx[i], s[1] = yy[i], s[2] = zz[i], s[3] = xy[i], s[4] = 0.0, s[5] = 0.0;
-          b.plastic_strain[p] += shear[i];
-          b.yield[p] = 1;
+          b.plastic_strain[b.index[k]] += shear[i];
+          b.yield[b.index[k]] = 1;
           continue;
         }
         // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-        const Result r = d.plane ? integrate_plane<false>(d.trial, d.principal, b.plastic_strain[p])
-                                 : integrate_trial<false>(d.trial, b.plastic_strain[p]);
+        const int p = b.index[~k];
+        const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
+        const Result r = integrate_trial<false>(trial, b.plastic_strain[p]);
         b.stress[p] = r.stress;
         b.plastic_strain[p] += r.shear_increment;
         b.yield[p] = r.kind != Return::Elastic;

@@ -102,23 +102,28 @@ class MohrCoulomb : public Material {
   ElasticConstants elastic_;
   ReturnTables fixed_;                                    // without softening
   double volumetric_compliance_ = 0, inverse_two_g_ = 0;  // lambda / (3 lambda + 2G), 1 / 2G
-  // update_stress's scratch: the trials that need a return, to share among the threads.
-  struct Deferred {
-    Sym trial;
-    PlanePrincipal principal;  // with `plane`
-    bool plane;
-    int k;  // in the batch
+  // update_stress's scratch: the trials that need a return, to share among the threads. Per listed
+  // entry, its index k in the batch, or ~k for a return made by integrate_trial / integrate_plane (a
+  // softening material or a 3D trial: its trial is formed again from the particle's state, which the
+  // first pass leaves as it was), and for the others, plane-strain trials at fixed strength, what
+  // plane_returns reads: the ordered principal values, the in-plane half-difference d and radius r,
+  // sigma_xy and the slots of values 0 and 1 (doubles: the vectoriser wants one type). 64 bytes, a
+  // cache line: the whole trial and its principal values, 128 bytes, were read back from beyond the
+  // cache (a third of update_stress's samples under perf).
+  struct PlaneTrial {
+    double v[3], d, r, xy, slot0, slot1;
   };
-  mutable std::vector<Deferred> deferred_;
-  // integrate_plane at fixed strength for `count` (at most kPlaneChunk) deferred entries of
-  // plane-strain trials that yield, in arithmetic the compiler vectorises over the entries: entry i's
-  // stress (xx, yy, zz, xy; xz = yz = 0) and its equivalent plastic shear increment.
+  mutable std::vector<int> deferred_;
+  mutable std::vector<PlaneTrial> plane_trials_;
+  // integrate_plane at fixed strength for `count` (at most kPlaneChunk) plane-strain trials that
+  // yield, in arithmetic the compiler vectorises over the entries: entry i's stress (xx, yy, zz, xy;
+  // xz = yz = 0) and its equivalent plastic shear increment.
   struct PlaneReturns {
     double *xx, *yy, *zz, *xy, *shear;
   };
-  void plane_returns(const Deferred* entries, int count, const PlaneReturns& out) const;
+  void plane_returns(const PlaneTrial* entries, int count, const PlaneReturns& out) const;
   static constexpr int kPlaneChunk = 128;  // entries plane_returns takes at a time
-  mutable std::vector<int> listed_;        // per thread t, at t + 1: how many of its block's entries deferred_ holds
+  mutable std::vector<int> listed_;        // per thread t, at t + 1: how many of its block's entries are listed
 };
 
 }  // namespace seismpm
