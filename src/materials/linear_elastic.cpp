@@ -13,24 +13,10 @@ LinearElastic::LinearElastic(double density, double young, double poisson)
   validate_elastic(density, elastic_);
 }
 
-namespace {
-
-// The product as it is, never fused with the sum it feeds into a multiply-add: elastic_trial adds
-// lambda tr(de) to its three normal entries by a vector addition, unfused, and the update below must
-// give its numbers to the bit.
-inline double unfused(double product) {
-#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
-  return __builtin_assoc_barrier(product);
-#else
-  return product;
-#endif
-}
-
-}  // namespace
-
-// elastic_trial written into the stress entry by entry: built whole and copied, its normal entries
-// came from a wide store and a narrow one over part of it, and the wide load that read them back
-// waited for both (the moving-base block's stress stage, 40,450 particles: 1.50 -> 1.36 ms a step).
+// elastic_trial written into the stress entry by entry, with its unfused lambda tr(de), to the bit:
+// built whole and copied, its normal entries came from a wide store and a narrow one over part of it,
+// and the wide load that read them back waited for both (the moving-base block's stress stage, 40,450
+// particles: 1.50 -> 1.36 ms a step).
 void LinearElastic::update_stress(const StressUpdate& b) const {
   const double lambda = elastic_.lambda(), two_g = 2.0 * elastic_.shear();
 #pragma omp parallel for schedule(static)

@@ -25,9 +25,22 @@ inline constexpr Interval kPoissonRange = closed_open(0.0, 0.5);
 // Throws ParameterError naming the bad parameter ("density", "young", "poisson").
 void validate_elastic(double density, const ElasticConstants& e);
 
+// The product as it is, never fused with the sum it feeds into a multiply-add. Whether GCC fuses
+// lambda tr(de) into the normal entries of a trial depends on the loop it is inlined into (where the
+// product is also broadcast to a vector it is not), and a trial must have the same bits wherever it
+// is formed: Mohr-Coulomb forms it in two loops, and its vectorised first pass, where GCC fused it,
+// changed the trials in round-off until the product was kept apart here.
+inline double unfused(double product) {
+#if defined(__GNUC__) && !defined(__clang__) && __GNUC__ >= 12
+  return __builtin_assoc_barrier(product);
+#else
+  return product;
+#endif
+}
+
 // Adds the elastic response to the strain increment de: sigma + D de.
 inline Sym elastic_trial(const Sym& stress, const Sym& de, double lambda, double two_g) {
-  const double lt = lambda * trace(de);
+  const double lt = unfused(lambda * trace(de));
   Sym s = stress + two_g * de;
   s[0] += lt;
   s[1] += lt;
