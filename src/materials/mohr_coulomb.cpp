@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <omp.h>
@@ -323,9 +324,11 @@ void MohrCoulomb::plane_returns(const PlaneTrial* entries, int count, const Plan
   double* __restrict zz = out.zz;
   double* __restrict xy = out.xy;
   double* __restrict shear = out.shear;
-  // Candidates [first, last) for every entry not yet settled: the face for all, the others only in
-  // a chunk where some entry is not on the face (most plastic entries of a shaken slope are, and
-  // seven more candidates each cost them more than the face saved).
+  // Candidates [first, last) for every entry not yet settled; the caller takes them one at a time
+  // and stops once every entry of the chunk has its return. Most chunks settle early (a shaken
+  // slope's returns go mostly to the tension plane, a collapsing column's to the compression edge,
+  // the second and third candidates), and each candidate after that cost every entry as much again;
+  // a settled entry is never changed, so stopping changes no result.
   auto try_candidates = [&](auto first, auto last) {
     double missing = 0.0;
     for (int i = 0; i < n; ++i) {
@@ -373,8 +376,11 @@ void MohrCoulomb::plane_returns(const PlaneTrial* entries, int count, const Plan
     res0[i] = res1[i] = res2[i] = apex;  // where no candidate passes
     done[i] = 0.0;
   }
-  if (try_candidates(std::integral_constant<int, 0>{}, std::integral_constant<int, 1>{}) > 0.0)
-    try_candidates(std::integral_constant<int, 1>{}, std::integral_constant<int, 8>{});
+  [&]<int... c>(std::integer_sequence<int, c...>) {
+    // && stops at the first candidate after which no entry is missing.
+    (void)((try_candidates(std::integral_constant<int, c>{}, std::integral_constant<int, c + 1>{}) > 0.0) && ...);
+  }
+  (std::make_integer_sequence<int, 8>{});
   for (int i = 0; i < n; ++i) {
     const double sb[3] = {v0s[i], v1s[i], v2s[i]};
     const double res[3] = {res0[i], res1[i], res2[i]};
