@@ -447,8 +447,8 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
         const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
         t0[i] = trial[0], t1[i] = trial[1], t2[i] = trial[2], t3[i] = trial[3], t4[i] = trial[4], t5[i] = trial[5];
       }
-      // m, d and r first, through memory: the values m +- r are then sums of m as plane_principal
-      // rounds it (read in the same loop, the compiler fused 0.5 (xx + yy) +- r into one rounding).
+      // m, d and r in a loop of their own, the ordered values and the test in the next. 0.5 (xx + yy) is
+      // exact, so m +- r rounds as plane_principal's does whether or not the compiler fuses it.
       for (int i = 0; i < n; ++i) {
         mm[i] = 0.5 * (t0[i] + t1[i]), dd[i] = 0.5 * (t0[i] - t1[i]);
         rr[i] = std::sqrt(dd[i] * dd[i] + t3[i] * t3[i]);
