@@ -324,47 +324,45 @@ void MohrCoulomb::plane_returns(const PlaneTrial* entries, int count, const Plan
   double* __restrict zz = out.zz;
   double* __restrict xy = out.xy;
   double* __restrict shear = out.shear;
-  // Candidates [first, last) for every entry not yet settled; the caller takes them one at a time
-  // and stops once every entry of the chunk has its return. Most chunks settle early (a shaken
-  // slope's returns go mostly to the tension plane, a collapsing column's to the compression edge,
-  // the second and third candidates), and each candidate after that cost every entry as much again;
-  // a settled entry is never changed, so stopping changes no result.
-  auto try_candidates = [&](auto first, auto last) {
+  // Candidate c for every entry not yet settled; the caller takes the candidates in order and stops
+  // once every entry of the chunk has its return. Most chunks settle early (a shaken slope's returns go
+  // mostly to the tension plane, a collapsing column's to the compression edge, the second and third
+  // candidates), and each candidate after that cost every entry as much again; a settled entry is never
+  // changed, so stopping changes no result.
+  auto try_candidate = [&](auto candidate) {
+    constexpr int c = decltype(candidate)::value;
+    constexpr Candidate cand = kCandidates[c];
     double missing = 0.0;
     for (int i = 0; i < n; ++i) {
       const double sb[3] = {v0s[i], v1s[i], v2s[i]};
       double res[3] = {res0[i], res1[i], res2[i]};
       bool found = done[i] != 0.0;
+      double f[3] = {0.0, 0.0, 0.0};
 #pragma GCC unroll 8
-      for (int c = decltype(first)::value; c < decltype(last)::value; ++c) {
-        const Candidate& cand = kCandidates[c];
-        double f[3] = {0.0, 0.0, 0.0};
-#pragma GCC unroll 8
-        for (int k = 0; k < cand.n; ++k) {
-          const int j = cand.set[k];
-          f[k] = a[j][0] * sb[0] + a[j][1] * sb[1] + a[j][2] * sb[2] - r[j];
-        }
-        double dl[3];
-#pragma GCC unroll 8
-        for (int k = 0; k < 3; ++k) dl[k] = inverse[c][k][0] * f[0] + inverse[c][k][1] * f[1] + inverse[c][k][2] * f[2];
-        bool take = usable[c] & !found;
-#pragma GCC unroll 8
-        for (int k = 0; k < cand.n; ++k) take &= !(dl[k] < -1e-12);
-        double v[3] = {sb[0], sb[1], sb[2]};
-#pragma GCC unroll 8
-        for (int k = 0; k < cand.n; ++k) {
-          const int j = cand.set[k];
-#pragma GCC unroll 8
-          for (int m = 0; m < 3; ++m) v[m] -= dl[k] * db[j][m];
-        }
-        const double tol = tols[i];
-        take &= !(v[0] < v[1] - tol) & !(v[1] < v[2] - tol);
-#pragma GCC unroll 8
-        for (int j = 0; j < 6; ++j) take &= !(a[j][0] * v[0] + a[j][1] * v[1] + a[j][2] * v[2] - r[j] > tol);
-#pragma GCC unroll 8
-        for (int m = 0; m < 3; ++m) res[m] = take ? v[m] : res[m];
-        found |= take;
+      for (int k = 0; k < cand.n; ++k) {
+        const int j = cand.set[k];
+        f[k] = a[j][0] * sb[0] + a[j][1] * sb[1] + a[j][2] * sb[2] - r[j];
       }
+      double dl[3];
+#pragma GCC unroll 8
+      for (int k = 0; k < 3; ++k) dl[k] = inverse[c][k][0] * f[0] + inverse[c][k][1] * f[1] + inverse[c][k][2] * f[2];
+      bool take = usable[c] & !found;
+#pragma GCC unroll 8
+      for (int k = 0; k < cand.n; ++k) take &= !(dl[k] < -1e-12);
+      double v[3] = {sb[0], sb[1], sb[2]};
+#pragma GCC unroll 8
+      for (int k = 0; k < cand.n; ++k) {
+        const int j = cand.set[k];
+#pragma GCC unroll 8
+        for (int m = 0; m < 3; ++m) v[m] -= dl[k] * db[j][m];
+      }
+      const double tol = tols[i];
+      take &= !(v[0] < v[1] - tol) & !(v[1] < v[2] - tol);
+#pragma GCC unroll 8
+      for (int j = 0; j < 6; ++j) take &= !(a[j][0] * v[0] + a[j][1] * v[1] + a[j][2] * v[2] - r[j] > tol);
+#pragma GCC unroll 8
+      for (int m = 0; m < 3; ++m) res[m] = take ? v[m] : res[m];
+      found |= take;
       res0[i] = res[0], res1[i] = res[1], res2[i] = res[2];
       done[i] = found ? 1.0 : 0.0;
       missing += found ? 0.0 : 1.0;
@@ -378,7 +376,7 @@ void MohrCoulomb::plane_returns(const PlaneTrial* entries, int count, const Plan
   }
   [&]<int... c>(std::integer_sequence<int, c...>) {
     // && stops at the first candidate after which no entry is missing.
-    (void)((try_candidates(std::integral_constant<int, c>{}, std::integral_constant<int, c + 1>{}) > 0.0) && ...);
+    (void)((try_candidate(std::integral_constant<int, c>{}) > 0.0) && ...);
   }
   (std::make_integer_sequence<int, 8>{});
   for (int i = 0; i < n; ++i) {
@@ -439,7 +437,7 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
     // back through memory), then each trial settled or listed.
     constexpr int C = kPlaneChunk;
     alignas(64) double t0[C], t1[C], t2[C], t3[C], t4[C], t5[C];
-    alignas(64) double mm[C], dd[C], rr[C], v0[C], v1[C], v2[C], sl0[C], sl1[C], fast[C], elastic[C];
+    alignas(64) double dd[C], rr[C], v0[C], v1[C], v2[C], sl0[C], sl1[C], fast[C], elastic[C];
     for (int k0 = lo; k0 < hi; k0 += C) {
       const int n = std::min(C, hi - k0);
       for (int i = 0; i < n; ++i) {
@@ -447,14 +445,12 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
         const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
         t0[i] = trial[0], t1[i] = trial[1], t2[i] = trial[2], t3[i] = trial[3], t4[i] = trial[4], t5[i] = trial[5];
       }
-      // m, d and r in a loop of their own, the ordered values and the test in the next. 0.5 (xx + yy) is
-      // exact, so m +- r rounds as plane_principal's does whether or not the compiler fuses it.
       for (int i = 0; i < n; ++i) {
-        mm[i] = 0.5 * (t0[i] + t1[i]), dd[i] = 0.5 * (t0[i] - t1[i]);
-        rr[i] = std::sqrt(dd[i] * dd[i] + t3[i] * t3[i]);
-      }
-      for (int i = 0; i < n; ++i) {
-        double a = mm[i] + rr[i], bb = mm[i] - rr[i], c = t2[i], sa = 0.0, sb = 1.0, sc = 2.0;
+        // 0.5 (xx + yy) is exact, so m +- r rounds as plane_principal's does, fused or not.
+        const double m = 0.5 * (t0[i] + t1[i]), d = 0.5 * (t0[i] - t1[i]);
+        const double r = std::sqrt(d * d + t3[i] * t3[i]);
+        dd[i] = d, rr[i] = r;
+        double a = m + r, bb = m - r, c = t2[i], sa = 0.0, sb = 1.0, sc = 2.0;
         // Where the first value is below the second, the two swap, with their slots.
         bool swap = bb < c;
         double up = swap ? c : bb, down = swap ? bb : c, up_slot = swap ? sc : sb, down_slot = swap ? sb : sc;
