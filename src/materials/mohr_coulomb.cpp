@@ -512,16 +512,16 @@ void MohrCoulomb::update_stress(const StressUpdate& b) const {
       for (int i = 0; i < n; ++i) any_fast |= ks[i] >= 0;
       if (any_fast) plane_returns(plane_trials.data() + offset, n, plane);
       for (int i = 0; i < n; ++i) {
-        const int k = ks[i];
-        if (k >= 0) {  // plastic: the trial was not elastic
-          Sym& s = b.stress[b.index[k]];
+        const bool plane_entry = ks[i] >= 0;
+        const int p = b.index[plane_entry ? ks[i] : ~ks[i]];
+        if (plane_entry) {  // plastic: the trial was not elastic
+          Sym& s = b.stress[p];
           s[0] = xx[i], s[1] = yy[i], s[2] = zz[i], s[3] = xy[i], s[4] = 0.0, s[5] = 0.0;
-          b.plastic_strain[b.index[k]] += shear[i];
-          b.yield[b.index[k]] = 1;
+          b.plastic_strain[p] += shear[i];
+          b.yield[p] = 1;
           continue;
         }
         // The step's plastic strain tensor is not kept: only its equivalent shear accumulates.
-        const int p = b.index[~k];
         const Sym trial = elastic_trial(b.stress[p], b.strain_increment[p], lambda, two_g);
         const Result r = integrate_trial<false>(trial, b.plastic_strain[p]);
         b.stress[p] = r.stress;
