@@ -60,8 +60,8 @@ void Model<Dim>::velocity_gradients(const StepContext& c) {
       };
       if (Contact && contact_.near_shared(support_.cell_of[p]))
         gather(std::true_type{});
-      else
-        gather(std::false_type{});
+      else  // the common field alone: the row-by-row sums
+        L = gradient(st[p], G, G.velocity.data());
       // Entry by entry: the matrix form stored L in halves and read it back whole, a load that waits
       // for both stores to retire (a third of this loop's time).
       auto dl = [&](int a, int b) { return a < Dim && b < Dim ? dt * L(a, b) : 0.0; };

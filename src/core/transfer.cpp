@@ -171,8 +171,10 @@ void Model<Dim>::grid_to_particles(const StepContext& c, bool remap) {
     const bool slotted = Contact && contact_.near_shared(support_.cell_of[p]);
     if (slotted)
       apic ? gather(std::true_type{}, std::true_type{}) : gather(std::true_type{}, std::false_type{});
-    else
-      apic ? gather(std::false_type{}, std::true_type{}) : gather(std::false_type{}, std::false_type{});
+    else if (apic)
+      gather(std::false_type{}, std::true_type{});
+    else  // FLIP on the common field alone: the row-by-row sums
+      a = interpolate(st[p], G, G.acceleration.data()), vl = interpolate(st[p], G, G.velocity.data());
     if (apic) {
       P.v[p] = vl;
       // A particle alone on its nodes has no neighbours to make a gradient with: it carries none. Kept,

@@ -186,3 +186,56 @@ TEMPLATE_TEST_CASE_SIG("stencils made a block at a time equal those made one by 
                        (GimpShape, 3)) {
   check_block_matches_particles<Shape, Dim>();
 }
+
+namespace {
+
+// The transfers' row-by-row sums (interpolate, gradient) against the node-by-node ones over the same
+// stencil, for a random nodal field, and their reproduction of an affine field u = A x + b.
+template <class Shape, int Dim>
+void check_factorised_sums(double l) {
+  const Grid<Dim> grid(Vec<Dim>::Zero(), Vec<Dim>::Constant(1.0), 0.1, 1);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), at(0.02, 0.98);
+  std::vector<Vec<Dim>> random(grid.node_count()), affine(grid.node_count());
+  Mat<Dim> A;
+  Vec<Dim> b;
+  for (int r = 0; r < Dim; ++r) {
+    b[r] = u(rng);
+    for (int c = 0; c < Dim; ++c) A(r, c) = u(rng);
+  }
+  for (int i = 0; i < grid.node_count(); ++i) {
+    for (int d = 0; d < Dim; ++d) random[i][d] = u(rng);
+    affine[i] = A * grid.node_position(i) + b;
+  }
+  double worst_value = 0.0, worst_gradient = 0.0, worst_affine_value = 0.0, worst_affine_gradient = 0.0;
+  for (int k = 0; k < 500; ++k) {
+    Vec<Dim> x;
+    for (int d = 0; d < Dim; ++d) x[d] = at(rng);
+    Stencil<Dim, Shape::K> st;
+    REQUIRE(make_stencil<Shape>(grid, x, l, st));
+    Vec<Dim> value = Vec<Dim>::Zero();
+    Mat<Dim> gradient_by_node = Mat<Dim>::Zero();
+    for_each_node(st, grid, [&](int i, double N, const Vec<Dim>& dN) {
+      value += N * random[i];
+      gradient_by_node += random[i] * dN.transpose();
+    });
+    worst_value = std::max(worst_value, (interpolate(st, grid, random.data()) - value).norm());
+    worst_gradient =
+        std::max(worst_gradient, (gradient(st, grid, random.data()) - gradient_by_node).norm() * grid.cell());
+    worst_affine_value = std::max(worst_affine_value, (interpolate(st, grid, affine.data()) - (A * x + b)).norm());
+    worst_affine_gradient = std::max(worst_affine_gradient, (gradient(st, grid, affine.data()) - A).norm());
+  }
+  CHECK(worst_value < 1e-14);            // the same sum, grouped by rows
+  CHECK(worst_gradient < 1e-13);         // (scaled by h)
+  CHECK(worst_affine_value < 1e-13);     // sum N (A x_i + b) = A x + b
+  CHECK(worst_affine_gradient < 1e-12);  // sum (A x_i + b) grad N^T = A
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE_SIG("the transfers' row-by-row sums equal the node-by-node ones", "[core][shape]", ((int Dim), Dim),
+                       2, 3) {
+  SECTION("linear") { check_factorised_sums<LinearShape, Dim>(0.0); }
+  SECTION("uGIMP, 2 particles per cell") { check_factorised_sums<GimpShape, Dim>(0.25); }
+  SECTION("uGIMP, 3 particles per cell") { check_factorised_sums<GimpShape, Dim>(1.0 / 6.0); }
+}
